@@ -1,0 +1,78 @@
+//! Geometric primitives of the RenderMan Interface and the REYES operations on them:
+//! **bound**, **split** and **dice** (Cook, Carpenter, Catmull 1987).
+//!
+//! # Contract with the hider (`illume-reyes`) and the RI state (`illume-ri`)
+//! * `illume-ri` calls [`build`] with a geometry [`Request`] and a [`BuildContext`] (current
+//!   transform, declarations, basis, texture coordinates). `build` resolves the parameter list
+//!   into [`PrimVar`]s (checking counts per class against the primitive's topology — only geom
+//!   knows how many uniform/varying/vertex values a primitive needs) and returns primitives.
+//! * `illume-reyes` asks each [`Primitive`] for its camera-space [`Bound`], splits until it is
+//!   [`Primitive::diceable`] at the size it measures, then calls [`Primitive::dice`].
+//! * Everything a primitive hands out is in **camera space** (left-handed, +z forward).
+//! * [`Grid::ng`] is `normalize(dPdu × dPdv)` as computed in camera space, never flipped:
+//!   `Orientation`/`ReverseOrientation`/handedness flips are the hider's job (it knows the
+//!   attributes). A user `N` is interpolated and transformed to camera space with the inverse
+//!   transpose, into [`Grid::n`]; without one, `n == ng`.
+#![forbid(unsafe_code)]
+
+pub mod bound;
+pub mod grid;
+pub mod primvar;
+
+pub use bound::Bound;
+pub use grid::{Grid, GridVar};
+pub use primvar::{PrimVar, PrimVarData};
+
+use glam::DMat4;
+use illume_rib::{Declaration, Request};
+use thiserror::Error;
+
+/// A piece of geometry the hider can bound, split and dice.
+pub trait Primitive: Send + Sync + std::fmt::Debug {
+    /// Camera-space bound of the surface (before displacement; the hider pads it).
+    fn bound(&self) -> Bound;
+
+    /// Whether [`Primitive::dice`] may be called. Aggregates (meshes, polygons with holes) say
+    /// `false` until split into parametric pieces.
+    fn diceable(&self) -> bool;
+
+    /// Splits into smaller primitives that together cover exactly this one (parametric halves,
+    /// mesh → faces, polygon → pieces). Never returns an empty list for a non-empty surface.
+    fn split(&self) -> Vec<Box<dyn Primitive>>;
+
+    /// Dices into a grid of `nu × nv` **vertices** (`nu, nv ≥ 2`), u varying fastest.
+    /// Adjacent grids of one primitive share their edge vertices exactly (same parameter
+    /// values evaluated the same way), so no crack opens between them.
+    fn dice(&self, nu: usize, nv: usize) -> Grid;
+}
+
+/// The graphics state `build` needs; everything else stays in `illume-ri`.
+pub struct BuildContext<'a> {
+    /// Object space → camera space, f64 (the current transformation matrix at the request).
+    pub camera_from_object: DMat4,
+    /// Looks up a variable name in the `Declare` table (including the spec's predeclared
+    /// variables: P, Pz, Pw, N, Np, Cs, Os, s, t, st, …). Inline declarations in the parameter
+    /// list take precedence.
+    pub declarations: &'a dyn Fn(&str) -> Option<Declaration>,
+    /// Current `Basis`: (u matrix, u step, v matrix, v step); matrices in RIB row order.
+    pub basis: ([f32; 16], i32, [f32; 16], i32),
+    /// Current `TextureCoordinates` s1 t1 s2 t2 s3 t3 s4 t4 (default 0 0 1 0 0 1 1 1).
+    pub texture_coordinates: [f32; 8],
+}
+
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum GeomError {
+    /// A request this crate does not build (yet); `ri` warns once per kind and skips it.
+    #[error("{0}: geometry not supported")]
+    Unsupported(String),
+    /// Wrong counts, bad indices, missing `P`, … with what was expected and found.
+    #[error("{request}: {message}")]
+    Invalid { request: String, message: String },
+}
+
+/// Builds the primitives of one geometry request. Non-geometry requests are a bug in the
+/// caller and return [`GeomError::Unsupported`].
+pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
+    let _ = ctx;
+    Err(GeomError::Unsupported(request.name().to_string()))
+}
