@@ -90,57 +90,75 @@ pub(crate) struct Lexer<R> {
     strings: HashMap<u16, String>,
 }
 
-fn is_name_byte(b: u8) -> bool {
-    b.is_ascii_alphanumeric() || b == b'_'
-}
+/// Byte classes for the word scanners, as a table: the hot loop of the whole parser.
+const DIGIT: u8 = 1;
+const NUMBER_PUNCT: u8 = 2;
+const NAME: u8 = 4;
+static CLASS: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut b = 0;
+    while b < 256 {
+        let c = b as u8;
+        let mut k = 0;
+        if c.is_ascii_digit() {
+            k |= DIGIT;
+        }
+        if matches!(c, b'+' | b'-' | b'.' | b'e' | b'E') {
+            k |= NUMBER_PUNCT;
+        }
+        if c.is_ascii_alphanumeric() || c == b'_' {
+            k |= NAME;
+        }
+        t[b] = k;
+        b += 1;
+    }
+    t
+};
 
-fn is_number_byte(b: u8) -> bool {
-    b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.' | b'e' | b'E')
+fn is_name_byte(b: u8) -> bool {
+    CLASS[usize::from(b)] & NAME != 0
 }
 
 /// A maximal run of bytes that can belong to a word (name or number), for the nom recognisers.
 fn word(input: &[u8], number: bool) -> IResult<&[u8], &[u8]> {
     if number {
         // Letters are included so that `1.0f` is reported as one bad number, not `1.0` then `f`.
-        take_while1(|b| is_number_byte(b) || is_name_byte(b))(input)
+        take_while1(|b| CLASS[usize::from(b)] != 0)(input)
     } else {
         take_while1(is_name_byte)(input)
     }
 }
 
-/// Integer literal `[+-]digits` that fits in i32; `None` means "parse it as a float".
-fn parse_int(text: &[u8]) -> Option<i32> {
-    let (neg, digits) = match text.first()? {
-        b'-' => (true, &text[1..]),
-        b'+' => (false, &text[1..]),
-        _ => (false, text),
-    };
-    if digits.is_empty() || digits.len() > 10 || !digits.iter().all(u8::is_ascii_digit) {
-        return None;
-    }
-    let mut v: i64 = 0;
-    for &d in digits {
-        v = v * 10 + i64::from(d - b'0');
-    }
-    i32::try_from(if neg { -v } else { v }).ok()
-}
-
 /// Classifies a number token: integer literals become `Int` (ASCII cannot tell `1` from `1.0`
 /// by type, so the parser keeps the distinction it can see), everything else `Float`.
 pub(crate) fn parse_number(text: &[u8]) -> Result<Token, String> {
-    if let Some(i) = parse_int(text) {
-        return Ok(Token::Int(i));
+    let (neg, digits) = match text.first() {
+        Some(b'-') => (true, &text[1..]),
+        Some(b'+') => (false, &text[1..]),
+        _ => (false, text),
+    };
+    if !digits.is_empty()
+        && digits.len() <= 10
+        && digits.iter().all(|&b| CLASS[usize::from(b)] & DIGIT != 0)
+    {
+        let v = digits
+            .iter()
+            .fold(0i64, |v, &d| v * 10 + i64::from(d - b'0'));
+        if let Ok(i) = i32::try_from(if neg { -v } else { v }) {
+            return Ok(Token::Int(i));
+        }
     }
-    let shown = String::from_utf8_lossy(text);
-    // fast-float2 accepts the RIB number forms (`-.5`, `1.e-3`, `1E+4`, `+2`) but also `inf`
-    // and `nan`; RIB does not, and the word starts with a digit, sign or point anyway.
-    if text.iter().any(|b| b.is_ascii_alphabetic() && !matches!(b, b'e' | b'E')) {
-        return Err(format!("bad number `{shown}`"));
-    }
+    // fast-float2 reads every RIB number form (`-.5`, `1.e-3`, `1E+4`, `+2`); it also reads
+    // `inf` and `nan`, which RIB does not have: the finiteness check rejects them.
     match fast_float2::parse::<f32, _>(text) {
         Ok(f) if f.is_finite() => Ok(Token::Float(f)),
-        Ok(_) => Err(format!("number `{shown}` is out of range for a float")),
-        Err(_) => Err(format!("bad number `{shown}`")),
+        Ok(_) if !text.iter().any(|b| b.is_ascii_alphabetic() && !matches!(b, b'e' | b'E')) => {
+            Err(format!(
+                "number `{}` is out of range for a float",
+                String::from_utf8_lossy(text)
+            ))
+        }
+        _ => Err(format!("bad number `{}`", String::from_utf8_lossy(text))),
     }
 }
 
@@ -182,6 +200,7 @@ impl<R: Read> Lexer<R> {
             return String::new();
         }
         let rest = &self.buf[start..];
+        let rest = &rest[..rest.len().min(400)];
         let end = rest
             .iter()
             .position(|&b| b == b'\n')
