@@ -12,7 +12,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(clap::Parser)]
-#[command(name = "catrib", version, about = "Print RIB as canonical ASCII or binary RIB")]
+#[command(
+    name = "catrib",
+    version,
+    about = "Print RIB as canonical ASCII or binary RIB"
+)]
 struct Cli {
     /// Write to this file instead of stdout (written to a temporary name, then renamed).
     #[arg(short = 'o', long = "output")]

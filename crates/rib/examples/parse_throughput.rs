@@ -29,7 +29,11 @@ fn generate(bytes: usize) -> Vec<u8> {
     while out.len() < bytes {
         if k % 2 == 0 {
             // A 16x16 bicubic patch mesh: 768 point coordinates.
-            write!(out, "PatchMesh \"bicubic\" 16 \"nonperiodic\" 16 \"nonperiodic\" \"P\" [").unwrap();
+            write!(
+                out,
+                "PatchMesh \"bicubic\" 16 \"nonperiodic\" 16 \"nonperiodic\" \"P\" ["
+            )
+            .unwrap();
             for i in 0..16 * 16 * 3 {
                 if i % 12 == 0 {
                     out.push(b'\n');

@@ -126,4 +126,3 @@ impl<W: Write> Sink for BinaryWriter<W> {
         Ok(())
     }
 }
-

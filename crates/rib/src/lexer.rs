@@ -152,7 +152,11 @@ pub(crate) fn parse_number(text: &[u8]) -> Result<Token, String> {
     // `inf` and `nan`, which RIB does not have: the finiteness check rejects them.
     match fast_float2::parse::<f32, _>(text) {
         Ok(f) if f.is_finite() => Ok(Token::Float(f)),
-        Ok(_) if !text.iter().any(|b| b.is_ascii_alphabetic() && !matches!(b, b'e' | b'E')) => {
+        Ok(_)
+            if !text
+                .iter()
+                .any(|b| b.is_ascii_alphabetic() && !matches!(b, b'e' | b'E')) =>
+        {
             Err(format!(
                 "number `{}` is out of range for a float",
                 String::from_utf8_lossy(text)
@@ -568,9 +572,7 @@ impl<R: Read> Lexer<R> {
                 let c = self.take(1, p, "a request code")?[0];
                 match self.requests.get(&c) {
                     Some(name) => Token::Name(name.clone()),
-                    None => {
-                        return Err(self.error(p, format!("undefined binary request code {c}")))
-                    }
+                    None => return Err(self.error(p, format!("undefined binary request code {c}"))),
                 }
             }
             0xc8..=0xcb => {

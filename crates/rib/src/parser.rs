@@ -208,13 +208,9 @@ impl<R: Read> Parser<R> {
                 span: self.span(p),
                 value,
             }),
-            Err(SignatureError::Bad(message)) => Err(self.diagnostic(
-                Severity::Error,
-                p,
-                Some(&name),
-                message,
-                source_line,
-            )),
+            Err(SignatureError::Bad(message)) => {
+                Err(self.diagnostic(Severity::Error, p, Some(&name), message, source_line))
+            }
             Err(SignatureError::Unknown(args)) => {
                 let request = Request::Unknown {
                     name: name.to_string(),
@@ -272,7 +268,13 @@ impl<R: Read> Iterator for Parser<R> {
                 let message = format!("{} outside any request", stray.describe());
                 let line = self.lexer.current_line();
                 self.resynchronise();
-                Some(Err(self.diagnostic(Severity::Error, p, None, message, line)))
+                Some(Err(self.diagnostic(
+                    Severity::Error,
+                    p,
+                    None,
+                    message,
+                    line,
+                )))
             }
         }
     }
@@ -304,7 +306,9 @@ pub fn decompress(mut reader: impl Read + Send + 'static) -> io::Result<Box<dyn 
     }
     let whole = io::Cursor::new(magic[..n].to_vec()).chain(reader);
     if n == 2 && magic == [0x1f, 0x8b] {
-        Ok(Box::new(flate2::read::MultiGzDecoder::new(BufReader::new(whole))))
+        Ok(Box::new(flate2::read::MultiGzDecoder::new(BufReader::new(
+            whole,
+        ))))
     } else {
         Ok(Box::new(whole))
     }

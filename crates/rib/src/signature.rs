@@ -156,7 +156,9 @@ impl Args {
             Arg::Int(i) => Ok(Handle::Int(i)),
             Arg::Float(f) if integral(f).is_some() => Ok(Handle::Int(integral(f).unwrap_or(0))),
             Arg::Str(s) => Ok(Handle::Str(s)),
-            _ => Err(format!("expected a handle (number or string), found {found}")),
+            _ => Err(format!(
+                "expected a handle (number or string), found {found}"
+            )),
         }
     }
 
@@ -166,7 +168,9 @@ impl Args {
         match self.next_or("an array of integers")? {
             Arg::Int(i) => Ok(vec![i]),
             Arg::Array(Value::Ints(v)) => Ok(v),
-            Arg::Array(Value::Floats(v)) => v.iter().map(|&f| integral(f).ok_or_else(bad)).collect(),
+            Arg::Array(Value::Floats(v)) => {
+                v.iter().map(|&f| integral(f).ok_or_else(bad)).collect()
+            }
             _ => Err(bad()),
         }
     }
@@ -615,8 +619,13 @@ pub(crate) fn build(name: &str, args: Vec<Arg>) -> Result<Request, SignatureErro
             params: a.params()?,
         },
         "MakeTexture" | "MakeBump" => {
-            let (picture, texture, swrap, twrap, filter) =
-                (a.string()?, a.string()?, a.string()?, a.string()?, a.string()?);
+            let (picture, texture, swrap, twrap, filter) = (
+                a.string()?,
+                a.string()?,
+                a.string()?,
+                a.string()?,
+                a.string()?,
+            );
             let [swidth, twidth] = a.floats()?;
             let params = a.params()?;
             if name == "MakeTexture" {
