@@ -211,7 +211,8 @@ impl<R: Read> Lexer<R> {
             .unwrap_or(rest.len())
             .min(200);
         let text = &rest[..end];
-        if text.iter().any(|&b| b >= 0x80 || b == 0) && std::str::from_utf8(text).is_err() {
+        let control = |b: u8| (b < 0x20 && b != b'\t' && b != b'\r') || b == 0x7f;
+        if text.iter().any(|&b| control(b)) || std::str::from_utf8(text).is_err() {
             // Binary RIB or garbage: a caret under it would not help.
             return String::new();
         }

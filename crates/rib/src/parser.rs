@@ -250,7 +250,12 @@ impl<R: Read> Iterator for Parser<R> {
             Token::Eof => {
                 self.finished = true;
                 let e = self.lexer.io_error.take()?;
-                let message = format!("read error: {e}");
+                let message = match e.kind() {
+                    io::ErrorKind::InvalidInput | io::ErrorKind::InvalidData => {
+                        format!("read error: {e} (truncated or corrupt gzip?)")
+                    }
+                    _ => format!("read error: {e}"),
+                };
                 Some(Err(self.diagnostic(
                     Severity::Error,
                     p,
