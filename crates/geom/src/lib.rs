@@ -15,12 +15,15 @@
 //!   transpose, into [`Grid::n`]; without one, `n == ng`.
 #![forbid(unsafe_code)]
 
+pub mod basis;
 pub mod bound;
 pub mod grid;
 pub mod parametric;
+pub mod patch;
 pub mod primvar;
 pub mod quadric;
 
+pub use basis::basis_matrix;
 pub use bound::Bound;
 pub use grid::{Grid, GridVar};
 pub use parametric::{Parametric, Surface};
@@ -76,7 +79,8 @@ pub enum GeomError {
 /// Builds the primitives of one geometry request. Non-geometry requests are a bug in the
 /// caller and return [`GeomError::Unsupported`].
 ///
-/// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus).
+/// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
+/// Patch and PatchMesh (bilinear, bicubic with `ctx.basis`).
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -94,6 +98,47 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
         | Request::Paraboloid { params, .. }
         | Request::Disk { params, .. }
         | Request::Torus { params, .. } => quadric::build_quadric(request, params, ctx),
+        Request::Patch { kind, params } => {
+            let (bicubic, n) = patch_kind(request.name(), kind)?;
+            let shape = patch::MeshShape {
+                bicubic,
+                nu: n,
+                uwrap: "nonperiodic",
+                nv: n,
+                vwrap: "nonperiodic",
+            };
+            patch::build_mesh(request.name(), shape, &ctx.basis, params, ctx)
+        }
+        Request::PatchMesh {
+            kind,
+            nu,
+            uwrap,
+            nv,
+            vwrap,
+            params,
+        } => {
+            let (bicubic, _) = patch_kind(request.name(), kind)?;
+            let shape = patch::MeshShape {
+                bicubic,
+                nu: *nu,
+                uwrap,
+                nv: *nv,
+                vwrap,
+            };
+            patch::build_mesh(request.name(), shape, &ctx.basis, params, ctx)
+        }
         _ => Err(GeomError::Unsupported(request.name().to_string())),
+    }
+}
+
+/// `"bilinear"` → (false, 2 control points per side), `"bicubic"` → (true, 4).
+fn patch_kind(request: &str, kind: &str) -> Result<(bool, i32), GeomError> {
+    match kind {
+        "bilinear" => Ok((false, 2)),
+        "bicubic" => Ok((true, 4)),
+        _ => Err(GeomError::Invalid {
+            request: request.to_string(),
+            message: format!("type must be \"bilinear\" or \"bicubic\", found \"{kind}\""),
+        }),
     }
 }
