@@ -22,6 +22,7 @@ pub mod parametric;
 pub mod patch;
 pub mod primvar;
 pub mod quadric;
+pub mod teapot;
 
 pub use basis::basis_matrix;
 pub use bound::Bound;
@@ -80,7 +81,7 @@ pub enum GeomError {
 /// caller and return [`GeomError::Unsupported`].
 ///
 /// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
-/// Patch and PatchMesh (bilinear, bicubic with `ctx.basis`).
+/// Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), `Geometry "teapot"`.
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -126,6 +127,10 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
                 vwrap,
             };
             patch::build_mesh(request.name(), shape, &ctx.basis, params, ctx)
+        }
+        Request::Geometry { kind, params } if kind == "teapot" => teapot::build_teapot(params, ctx),
+        Request::Geometry { kind, .. } => {
+            Err(GeomError::Unsupported(format!("Geometry \"{kind}\"")))
         }
         _ => Err(GeomError::Unsupported(request.name().to_string())),
     }

@@ -372,3 +372,32 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn teapot_is_32_patches_inside_its_hull_with_shared_edges() {
+    let r = Request::Geometry {
+        kind: "teapot".into(),
+        params: vec![],
+    };
+    let prims = build_ok(&r);
+    assert_eq!(prims.len(), 32);
+    let b = prims
+        .iter()
+        .fold(illume_geom::Bound::EMPTY, |b, p| b.union(p.bound()));
+    // The hull of the Newell control points: x ∈ [−3, 3.525], y ∈ [−2, 2], z ∈ [0, 3.15].
+    assert!(
+        b.min.cmpge(Vec3::new(-3.0, -2.0, 0.0) - 1e-4).all()
+            && b.max.cmple(Vec3::new(3.525, 2.0, 3.15) + 1e-4).all(),
+        "{b:?}"
+    );
+    assert!(b.min.x < -2.9 && b.max.x > 3.3 && b.max.z > 3.1, "{b:?}");
+    // Body patches 0 and 1 share control points 3, 7, 11, 15: patch 0's u = 1 edge.
+    let (g0, g1) = (prims[0].dice(9, 9), prims[1].dice(9, 9));
+    for j in 0..9 {
+        let d = (g0.p[j * 9 + 8] - g1.p[j * 9]).length();
+        assert!(d < 1e-5, "row {j}: gap {d}");
+    }
+    // The lid's collapsed rows still get unit normals.
+    let lid = prims[20].dice(5, 5);
+    assert!(lid.ng.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+}
