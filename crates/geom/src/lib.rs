@@ -17,9 +17,11 @@
 
 pub mod basis;
 pub mod bound;
+pub mod ear_clipping;
 pub mod grid;
 pub mod parametric;
 pub mod patch;
+pub mod polygon;
 pub mod primvar;
 pub mod quadric;
 pub mod teapot;
@@ -81,7 +83,8 @@ pub enum GeomError {
 /// caller and return [`GeomError::Unsupported`].
 ///
 /// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
-/// Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), `Geometry "teapot"`.
+/// Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons (convex or not, with
+/// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), `Geometry "teapot"`.
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -99,6 +102,10 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
         | Request::Paraboloid { params, .. }
         | Request::Disk { params, .. }
         | Request::Torus { params, .. } => quadric::build_quadric(request, params, ctx),
+        Request::Polygon { .. }
+        | Request::GeneralPolygon { .. }
+        | Request::PointsPolygons { .. }
+        | Request::PointsGeneralPolygons { .. } => polygon::build_polygons(request, ctx),
         Request::Patch { kind, params } => {
             let (bicubic, n) = patch_kind(request.name(), kind)?;
             let shape = patch::MeshShape {
