@@ -401,3 +401,21 @@ fn teapot_is_32_patches_inside_its_hull_with_shared_edges() {
     let lid = prims[20].dice(5, 5);
     assert!(lid.ng.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
 }
+
+#[test]
+fn split_patch_pieces_share_edges_bit_exactly() {
+    let p: Vec<f32> = grid_points(11)
+        .iter()
+        .flat_map(|q| q.as_vec3().to_array())
+        .collect();
+    for basis in ["bezier", "b-spline", "hermite"] {
+        let prims = build(&patch("bicubic", &p), &ctx_basis(basis)).unwrap();
+        let halves = prims[0].split();
+        for (a, b) in [(&halves[0], &halves[1])] {
+            let (ga, gb) = (a.dice(6, 6), b.dice(6, 6));
+            let col = (0..6).all(|j| ga.p[j * 6 + 5] == gb.p[j * 6]);
+            let row = (0..6).all(|i| ga.p[30 + i] == gb.p[i]);
+            assert!(col || row, "{basis}");
+        }
+    }
+}

@@ -345,3 +345,40 @@ fn sub(r: &Request, m: DMat4, u: [f64; 2], v: [f64; 2]) -> Option<Parametric> {
     };
     Some(Parametric::new(Arc::new(q), Arc::new(vec![])).sub_range(u, v))
 }
+
+#[test]
+fn quadric_variables_interpolate_over_u_and_v() {
+    let r = Request::Cylinder {
+        radius: 1.0,
+        zmin: 0.0,
+        zmax: 1.0,
+        thetamax: 90.0,
+        params: vec![
+            floats("Cs", &[0., 0., 0., 1., 0., 0., 0., 1., 0., 1., 1., 0.]),
+            floats("constant float Kd", &[0.25]),
+            floats(
+                "varying vector dir",
+                &[1., 0., 0., 1., 0., 0., 1., 0., 0., 1., 0., 0.],
+            ),
+            floats("st", &[0., 0., 2., 0., 0., 2., 2., 2.]),
+        ],
+    };
+    let m = DMat4::from_rotation_z(90f64.to_radians())
+        * DMat4::from_translation(DVec3::new(0.0, 0.0, 5.0));
+    let g = build(&r, &ctx_with(m)).unwrap()[0].dice(5, 3);
+    let cs = g.cs.clone().unwrap();
+    for k in 0..g.len() {
+        assert!((cs[k].x - g.u[k]).abs() < 1e-6 && (cs[k].y - g.v[k]).abs() < 1e-6);
+        assert!((g.s[k] - 2.0 * g.u[k]).abs() < 1e-6 && (g.t[k] - 2.0 * g.v[k]).abs() < 1e-6);
+    }
+    let kd = g.vars.iter().find(|v| v.name == "Kd").unwrap();
+    assert!(kd.data.iter().all(|&x| x == 0.25));
+    // A vector is rotated but not translated.
+    let dir = g.vars.iter().find(|v| v.name == "dir").unwrap();
+    assert_eq!(dir.components, 3);
+    assert!(
+        (dir.data[0]).abs() < 1e-6 && (dir.data[1] - 1.0).abs() < 1e-6 && dir.data[2].abs() < 1e-6
+    );
+    // The translation applies to points: z of the cylinder's base is at 5.
+    assert!((g.p[0].z - 5.0).abs() < 1e-6);
+}
