@@ -17,11 +17,14 @@
 
 pub mod bound;
 pub mod grid;
+pub mod parametric;
 pub mod primvar;
+pub mod quadric;
 
 pub use bound::Bound;
 pub use grid::{Grid, GridVar};
-pub use primvar::{PrimVar, PrimVarData};
+pub use parametric::{Parametric, Surface};
+pub use primvar::{ClassCounts, PrimVar, PrimVarData};
 
 use glam::DMat4;
 use illume_rib::{Declaration, Request};
@@ -72,7 +75,25 @@ pub enum GeomError {
 
 /// Builds the primitives of one geometry request. Non-geometry requests are a bug in the
 /// caller and return [`GeomError::Unsupported`].
+///
+/// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus).
+/// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
+/// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
-    let _ = ctx;
-    Err(GeomError::Unsupported(request.name().to_string()))
+    if !ctx.camera_from_object.is_finite() {
+        return Err(GeomError::Invalid {
+            request: request.name().to_string(),
+            message: "the current transformation is not finite".to_string(),
+        });
+    }
+    match request {
+        Request::Sphere { params, .. }
+        | Request::Cone { params, .. }
+        | Request::Cylinder { params, .. }
+        | Request::Hyperboloid { params, .. }
+        | Request::Paraboloid { params, .. }
+        | Request::Disk { params, .. }
+        | Request::Torus { params, .. } => quadric::build_quadric(request, params, ctx),
+        _ => Err(GeomError::Unsupported(request.name().to_string())),
+    }
 }
