@@ -367,8 +367,8 @@ fn quadric_variables_interpolate_over_u_and_v() {
         * DMat4::from_translation(DVec3::new(0.0, 0.0, 5.0));
     let g = build(&r, &ctx_with(m)).unwrap()[0].dice(5, 3);
     let cs = g.cs.clone().unwrap();
-    for k in 0..g.len() {
-        assert!((cs[k].x - g.u[k]).abs() < 1e-6 && (cs[k].y - g.v[k]).abs() < 1e-6);
+    for (k, c) in cs.iter().enumerate() {
+        assert!((c.x - g.u[k]).abs() < 1e-6 && (c.y - g.v[k]).abs() < 1e-6);
         assert!((g.s[k] - 2.0 * g.u[k]).abs() < 1e-6 && (g.t[k] - 2.0 * g.v[k]).abs() < 1e-6);
     }
     let kd = g.vars.iter().find(|v| v.name == "Kd").unwrap();
