@@ -4,15 +4,15 @@
 //! quadrilateral without holes becomes one bilinear patch (corners 0, 1, 3, 2), anything else
 //! is triangulated by ear clipping and each triangle becomes a bilinear patch whose last two
 //! corners coincide. Primitive variables are interpolated with the same bilinear weights, so
-//! over a triangle they are exactly linear. Polygons have no natural (s, t): without user
-//! `s`/`t`/`st` the grid's texture coordinates are zero.
+//! over a triangle they are exactly linear. Without user `s`/`t`/`st`, texture coordinates are
+//! the object-space (x, y) of the surface, as the spec defines a polygon's parameters.
 use crate::ear_clipping::triangulate;
-use crate::parametric::{Interp, Parametric, Surface};
+use crate::parametric::{with_default_st, Interp, Parametric, Surface, SurfaceVar};
 use crate::patch::BilinearSurface;
 use crate::primvar::{element64, resolve, surface_vars, ClassCounts, PrimVar};
 use crate::{BuildContext, GeomError, Primitive};
 use glam::{DVec2, DVec3};
-use illume_rib::{Class, ParamList};
+use illume_rib::{Class, ParamList, Type};
 use std::sync::Arc;
 
 /// One corner of a face: its vertex (index into vertex/varying values) and its face corner
@@ -162,6 +162,7 @@ pub fn build_polygons(
             let svars = surface_vars(&vars, &ctx.camera_from_object, |v| {
                 piece_interp(v, f, &piece)
             });
+            let svars = with_default_st(svars, default_st(&pts, &piece));
             out.push(Box::new(Parametric::new(
                 Arc::new(surface) as Arc<dyn Surface>,
                 Arc::new(svars),
@@ -169,6 +170,18 @@ pub fn build_polygons(
         }
     }
     Ok(out)
+}
+
+/// RI Spec 3.2 §5.1: "the surface parameters of a polygon are its (x, y) coordinates" and its
+/// texture coordinates default to them (not to `TextureCoordinates`): object-space x, y.
+fn default_st(pts: &[DVec3], piece: &[Corner; 4]) -> [SurfaceVar; 2] {
+    let var = |name: &str, axis: fn(DVec3) -> f64| SurfaceVar {
+        name: name.to_string(),
+        ty: Type::Float,
+        components: 1,
+        interp: Interp::Bilinear(piece.map(|c| vec![axis(pts[c.vertex])])),
+    };
+    [var("s", |p| p.x), var("t", |p| p.y)]
 }
 
 fn piece_interp(var: &PrimVar, face: usize, piece: &[Corner; 4]) -> Interp {

@@ -104,6 +104,10 @@ fn points_polygons_mesh_area_and_variables() {
     let g = prims[4].dice(3, 3);
     let id = &g.vars.iter().find(|v| v.name == "id").unwrap().data;
     assert!(id.iter().all(|&x| x == 14.0));
+    // Default texture coordinates are the object-space (x, y).
+    for (k, p) in g.p.iter().enumerate() {
+        assert!((g.s[k] - p.x).abs() < 1e-6 && (g.t[k] - p.y).abs() < 1e-6);
+    }
     // Over a triangle the variables are linear in position: Cs.x = 3y + x on this grid.
     for (p, c) in g.p.iter().zip(g.cs.as_ref().unwrap()) {
         assert!((c.x - (3.0 * p.y + p.x)).abs() < 1e-5, "{p} {c}");
