@@ -63,6 +63,10 @@ pub struct Fresnel {
 /// `Kr = 1`; grazing incidence (`I ⟂ N`) gives `Kr = 1`; zero-length `I` or `N` gives `Kr = 1`,
 /// `R = T = 0`. Evaluated in `f64`: the two amplitude ratios cancel near `eta = 1`.
 pub fn fresnel(i: Vec3, n: Vec3, eta: f32) -> Fresnel {
+    let (i64, n64) = (
+        i.as_dvec3().normalize_or_zero(),
+        n.as_dvec3().normalize_or_zero(),
+    );
     let i = normalize_or_zero(i);
     let n = normalize_or_zero(n);
     let r = reflect(i, n);
@@ -74,7 +78,8 @@ pub fn fresnel(i: Vec3, n: Vec3, eta: f32) -> Fresnel {
             t: i,
         };
     }
-    let kr = fresnel_kr(i.as_dvec3(), n.as_dvec3(), eta as f64) as f32;
+    // Normalised again in f64: near the critical angle `Kr` is infinitely sensitive to `cosθi`.
+    let kr = fresnel_kr(i64, n64, eta as f64) as f32;
     let t = refract(i, n, eta);
     Fresnel {
         kr,
