@@ -110,11 +110,11 @@ pub(crate) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightS
     }
 }
 
-/// `value / r²` for a light at squared distance `r2`, finite for every `r2`: a light exactly at
-/// the shaded point (`r = 0`, no direction) contributes nothing, and `1/r²` saturates at
-/// `f32::MAX` instead of overflowing.
-pub(crate) fn inverse_square(value: Vec3, r2: f32) -> Vec3 {
-    let r2 = r2 as f64;
+/// `value / (L·L)`, finite for every `L`: `L·L` is taken in `f64` (it underflows in `f32` below
+/// r ≈ 1e-19), a light exactly at the shaded point (`r = 0`, no direction) contributes nothing,
+/// and `1/r²` saturates at `f32::MAX` instead of overflowing.
+pub(crate) fn inverse_square(value: Vec3, l: Vec3) -> Vec3 {
+    let r2 = l.as_dvec3().length_squared();
     if (r2.is_nan() || r2 <= 0.0) || !r2.is_finite() {
         return Vec3::ZERO;
     }

@@ -23,8 +23,7 @@ pub(super) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightS
     for i in 0..grid.len() {
         let l_light = grid.p[i] - from;
         out.l[i] = -l_light;
-        out.cl[i] =
-            inverse_square(c, l_light.length_squared()) * shadowing.lit_fraction(grid, i, l_light);
+        out.cl[i] = inverse_square(c, l_light) * shadowing.lit_fraction(grid, i, l_light);
         out.lit[i] = true;
     }
     out

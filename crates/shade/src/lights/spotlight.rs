@@ -54,8 +54,7 @@ pub(super) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightS
         out.lit[i] = true;
         // pow of a negative base is NaN in SL for non-integer beams; beyond 90° the beam is dark.
         let atten = cosangle.max(0.0).powf(beam) * smoothstep(cosoutside, cosinside, cosangle);
-        out.cl[i] = inverse_square(c * atten, l_light.length_squared())
-            * shadowing.lit_fraction(grid, i, l_light);
+        out.cl[i] = inverse_square(c * atten, l_light) * shadowing.lit_fraction(grid, i, l_light);
     }
     out
 }
