@@ -37,7 +37,7 @@ mod zfile;
 pub use framebuffer::framebuffer_path;
 pub use quantize::{dither_noise, SampleDepth};
 pub use raster_limits::{MAX_DIMENSION, MAX_SAMPLES};
-pub use zfile::{read_zfile, write_zfile, ZFILE_MAGIC};
+pub use zfile::{read_zfile, write_zfile, write_zfile_with_order, ZFILE_MAGIC};
 
 use std::path::Path;
 use thiserror::Error;
