@@ -35,6 +35,7 @@ mod tiff_file;
 mod zfile;
 
 pub use framebuffer::framebuffer_path;
+pub use openexr::world_to_ndc;
 pub use quantize::{dither_noise, SampleDepth};
 pub use raster_limits::{MAX_DIMENSION, MAX_SAMPLES};
 pub use zfile::{read_zfile, write_zfile, write_zfile_with_order, ZFILE_MAGIC};
@@ -178,8 +179,8 @@ pub(crate) fn io_error(path: &Path, source: std::io::Error) -> ImageError {
 /// Writes one display (`Display "name" "type" "mode"`): `kind` is the display type
 /// (`tiff`/`file`, `png`, `openexr`/`exr`, `zfile`, `framebuffer`), case-insensitive.
 /// `framebuffer` writes to [`framebuffer_path`]`(path)`, not to `path`.
-/// `depth` is required by `zfile` and recorded by `openexr` (as `worldToCamera`/`worldToNDC`
-/// are not derivable here, it is ignored by the other kinds).
+/// `depth` is required by `zfile`, recorded by `openexr` (`worldToCamera`, `worldToNDC`) and
+/// ignored by the other kinds.
 pub fn write_display(
     path: &Path,
     kind: &str,
@@ -192,7 +193,7 @@ pub fn write_display(
         "tiff" | "file" => tiff_file::write_tiff(path, image, quantize),
         "png" => png_file::write_png(path, image, quantize),
         "framebuffer" => png_file::write_png(&framebuffer_path(path), image, quantize),
-        "openexr" | "exr" => openexr::write_exr(path, image, quantize),
+        "openexr" | "exr" => openexr::write_exr(path, image, quantize, depth),
         "zfile" => {
             let Some(depth) = depth else {
                 return Err(format_error(

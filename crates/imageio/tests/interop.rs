@@ -300,6 +300,15 @@ fn oiio_reads_every_display_kind_we_write() {
                 case.file
             ));
         }
+        if case.oiio_format == "openexr" {
+            let out = Command::new("iinfo").arg("-v").arg(&path).output().unwrap();
+            let text = String::from_utf8_lossy(&out.stdout);
+            for attr in ["worldToCamera", "worldToNDC"] {
+                if !text.contains(attr) {
+                    failures.push(format!("{}: iinfo shows no {attr}:\n{text}", case.file));
+                }
+            }
+        }
         let theirs = oiio_stats(&path);
         let ours = our_stats(&read_image(&path).unwrap());
         assert_eq!(theirs.len(), ours.len(), "{}", case.file);

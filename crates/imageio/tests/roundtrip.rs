@@ -480,3 +480,57 @@ fn tiff_compressions_from_the_tiff_crate_decode_exactly() {
     let want: Vec<f32> = gray16.iter().map(|&v| v as f32 / 65535.0).collect();
     assert_eq!(back.data, want);
 }
+
+#[test]
+fn openexr_records_world_to_camera_and_world_to_ndc() {
+    let dir = scratch("exrmatrices");
+    // A perspective camera: camera = world shifted by (0,0,5); screen = x/z, y/z (fov 90).
+    #[rustfmt::skip]
+    let world_to_camera = [
+        1.0, 0.0, 0.0, 0.0,
+        0.0, 1.0, 0.0, 0.0,
+        0.0, 0.0, 1.0, 0.0,
+        0.0, 0.0, 5.0, 1.0,
+    ];
+    #[rustfmt::skip]
+    let camera_to_screen_w = [
+        1.0, 0.0, 0.0, 0.0,
+        0.0, 1.0, 0.0, 0.0,
+        0.0, 0.0, 1.0, 1.0,
+        0.0, 0.0, 0.0, 0.0,
+    ];
+    let mut world_to_screen = [0f32; 16];
+    for r in 0..4 {
+        for c in 0..4 {
+            world_to_screen[r * 4 + c] = (0..4)
+                .map(|k| world_to_camera[r * 4 + k] * camera_to_screen_w[k * 4 + c])
+                .sum();
+        }
+    }
+    let depth = DepthMatrices {
+        world_to_screen,
+        world_to_camera,
+    };
+    let path = dir.join("z.exr");
+    write_display(
+        &path,
+        "exr",
+        &pattern(4, 4, "z"),
+        Quantize::FLOAT,
+        Some(&depth),
+    )
+    .unwrap();
+    let meta = exr::meta::MetaData::read_from_file(&path, false).unwrap();
+    let attributes = &meta.headers[0].own_attributes;
+    assert_eq!(attributes.world_to_camera, Some(world_to_camera));
+    // World point (1, -1, 0) is at camera (1, -1, 5): screen (0.2, -0.2), NDC (0.6, 0.6).
+    let ndc = attributes.world_to_normalized_device.expect("worldToNDC");
+    let p = [1.0f32, -1.0, 0.0, 1.0];
+    let h: Vec<f32> = (0..4)
+        .map(|c| (0..4).map(|k| p[k] * ndc[k * 4 + c]).sum())
+        .collect();
+    assert!(
+        (h[0] / h[3] - 0.6).abs() < 1e-6 && (h[1] / h[3] - 0.6).abs() < 1e-6,
+        "{h:?}"
+    );
+}
