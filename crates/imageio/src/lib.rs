@@ -188,11 +188,26 @@ pub fn write_display(
     quantize: Quantize,
     depth: Option<&DepthMatrices>,
 ) -> Result<(), ImageError> {
+    write_display_cropped(path, kind, image, quantize, depth, [0, 0])
+}
+
+/// [`write_display`] for an image that is a `CropWindow` of a larger frame: `origin` is the
+/// full-frame raster position (x, y) of its top-left pixel. Dither depends on full-frame pixel
+/// positions only, so crops rendered separately and pasted together equal the full render
+/// bit for bit.
+pub fn write_display_cropped(
+    path: &Path,
+    kind: &str,
+    image: &Image,
+    quantize: Quantize,
+    depth: Option<&DepthMatrices>,
+    origin: [u32; 2],
+) -> Result<(), ImageError> {
     image.validate(path)?;
     match kind.to_ascii_lowercase().as_str() {
-        "tiff" | "file" => tiff_file::write_tiff(path, image, quantize),
-        "png" => png_file::write_png(path, image, quantize),
-        "framebuffer" => png_file::write_png(&framebuffer_path(path), image, quantize),
+        "tiff" | "file" => tiff_file::write_tiff(path, image, quantize, origin),
+        "png" => png_file::write_png(path, image, quantize, origin),
+        "framebuffer" => png_file::write_png(&framebuffer_path(path), image, quantize, origin),
         "openexr" | "exr" => openexr::write_exr(path, image, quantize, depth),
         "zfile" => {
             let Some(depth) = depth else {

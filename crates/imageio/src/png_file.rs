@@ -14,7 +14,12 @@ use std::path::Path;
 
 /// Writes `image` as PNG. Channel layouts: `rgb`, `rgba`, one channel (grey), or one channel and
 /// `a` (grey+alpha); other layouts keep their first three or four channels in order.
-pub(crate) fn write_png(path: &Path, image: &Image, quantize: Quantize) -> Result<(), ImageError> {
+pub(crate) fn write_png(
+    path: &Path,
+    image: &Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+) -> Result<(), ImageError> {
     let image = image.select(|c| c != "z");
     if image.channels.is_empty() {
         return Err(format_error(
@@ -43,7 +48,7 @@ pub(crate) fn write_png(path: &Path, image: &Image, quantize: Quantize) -> Resul
         3 => png::ColorType::Rgb,
         _ => png::ColorType::Rgba,
     };
-    let (depth, bytes) = match quantize_image(&image, quantize) {
+    let (depth, bytes) = match quantize_image(&image, quantize, origin) {
         Samples::U8(v) => (png::BitDepth::Eight, v),
         Samples::U16(v) => (
             png::BitDepth::Sixteen,

@@ -198,13 +198,22 @@ pub(crate) enum Samples {
     F32(Vec<f32>),
 }
 
-/// Quantizes every sample of `image` (pixel order, channel index as dither stream).
-pub(crate) fn quantize_image(image: &crate::Image, quantize: Quantize) -> Samples {
+/// Quantizes every sample of `image` (pixel order, channel index as dither stream). `origin` is
+/// the full-frame raster position of the image's top-left pixel: dither is keyed on full-frame
+/// positions, so crop windows rendered separately tile into the full image bit for bit.
+pub(crate) fn quantize_image(
+    image: &crate::Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+) -> Samples {
     let nc = image.channels.len().max(1);
     let w = image.width.max(1) as usize;
     let at = |i: usize| {
         let pixel = i / nc;
-        let (x, y) = ((pixel % w) as u32, (pixel / w) as u32);
+        let (x, y) = (
+            origin[0].wrapping_add((pixel % w) as u32),
+            origin[1].wrapping_add((pixel / w) as u32),
+        );
         quantize.quantize(image.data[i], x, y, (i % nc) as u32)
     };
     let n = image.data.len();

@@ -91,14 +91,19 @@ fn ascii(tag: u16, text: &str) -> Entry {
 }
 
 /// Writes `image` as a TIFF (see the module documentation for the layout).
-pub(crate) fn write_tiff(path: &Path, image: &Image, quantize: Quantize) -> Result<(), ImageError> {
+pub(crate) fn write_tiff(
+    path: &Path,
+    image: &Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+) -> Result<(), ImageError> {
     // Depth is never quantized, and TIFF readers expect one sample format per file.
     let quantize = if image.channel_index("z").is_some() {
         Quantize::FLOAT
     } else {
         quantize
     };
-    let samples = quantize_image(image, quantize);
+    let samples = quantize_image(image, quantize, origin);
     let (bits, format, bytes): (u16, u16, Vec<u8>) = match &samples {
         Samples::U8(v) => (8, 1, v.clone()),
         Samples::U16(v) => (16, 1, v.iter().flat_map(|s| s.to_le_bytes()).collect()),

@@ -534,3 +534,42 @@ fn openexr_records_world_to_camera_and_world_to_ndc() {
         "{h:?}"
     );
 }
+
+#[test]
+fn dithered_crops_tile_into_the_full_frame_bit_for_bit() {
+    let dir = scratch("crops");
+    let full = pattern(40, 30, "rgba");
+    let q = Quantize::RGBA_DEFAULT;
+    let full_path = dir.join("full.tif");
+    write_display(&full_path, "tiff", &full, q, None).unwrap();
+    let whole = read_image(&full_path).unwrap();
+    // Four crop windows with uneven splits.
+    let mut pasted = vec![f32::NAN; whole.data.len()];
+    for (x0, x1, y0, y1) in [
+        (0, 17, 0, 11),
+        (17, 40, 0, 11),
+        (0, 17, 11, 30),
+        (17, 40, 11, 30),
+    ] {
+        let mut crop = Image::new(x1 - x0, y1 - y0, "rgba");
+        for y in y0..y1 {
+            for x in x0..x1 {
+                for c in 0..4 {
+                    let i = (((y - y0) * (x1 - x0) + (x - x0)) * 4 + c) as usize;
+                    crop.data[i] = full.at(x, y, c as usize);
+                }
+            }
+        }
+        let path = dir.join(format!("crop{x0}-{y0}.tif"));
+        write_display_cropped(&path, "tiff", &crop, q, None, [x0, y0]).unwrap();
+        let back = read_image(&path).unwrap();
+        for y in y0..y1 {
+            for x in x0..x1 {
+                for c in 0..4 {
+                    pasted[((y * 40 + x) * 4 + c) as usize] = back.at(x - x0, y - y0, c as usize);
+                }
+            }
+        }
+    }
+    assert_eq!(pasted, whole.data);
+}
