@@ -217,9 +217,11 @@ pub(crate) fn quantize_image(
         quantize.quantize(image.data[i], x, y, (i % nc) as u32)
     };
     let n = image.data.len();
+    // Each sample depends only on its own position, so the parallel map is deterministic.
+    use rayon::prelude::*;
     match quantize.sample_depth() {
-        SampleDepth::U8 => Samples::U8((0..n).map(|i| at(i) as u8).collect()),
-        SampleDepth::U16 => Samples::U16((0..n).map(|i| at(i) as u16).collect()),
-        SampleDepth::Float => Samples::F32((0..n).map(|i| at(i) as f32).collect()),
+        SampleDepth::U8 => Samples::U8((0..n).into_par_iter().map(|i| at(i) as u8).collect()),
+        SampleDepth::U16 => Samples::U16((0..n).into_par_iter().map(|i| at(i) as u16).collect()),
+        SampleDepth::Float => Samples::F32((0..n).into_par_iter().map(|i| at(i) as f32).collect()),
     }
 }

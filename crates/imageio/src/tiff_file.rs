@@ -113,13 +113,18 @@ pub(crate) fn write_tiff(
     let row_bytes = image.width as usize * nc * bits as usize / 8;
     let rows_per_strip = (65536 / row_bytes.max(1)).clamp(1, image.height as usize);
 
-    // Compress each strip on its own so readers can decode strips independently.
-    let mut strips = Vec::new();
-    for rows in bytes.chunks(rows_per_strip * row_bytes) {
-        let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
-        z.write_all(rows).map_err(|e| io_error(path, e))?;
-        strips.push(z.finish().map_err(|e| io_error(path, e))?);
-    }
+    // Compress each strip on its own so readers can decode strips independently; strips are
+    // independent, so they compress in parallel and the bytes do not depend on thread count.
+    use rayon::prelude::*;
+    let strips = bytes
+        .par_chunks(rows_per_strip * row_bytes)
+        .map(|rows| {
+            let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+            z.write_all(rows)?;
+            z.finish()
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| io_error(path, e))?;
 
     let color = nc >= 3 && image.channels[..3] == ["r", "g", "b"];
     let photometric_samples = if color { 3 } else { 1 };
@@ -576,23 +581,32 @@ pub(crate) fn decode_tiff(path: &Path, data: &[u8]) -> Result<Image, ImageError>
             chunk_spp as usize,
             big_endian,
         );
+        let x0 = cx as usize * chunk_w as usize;
+        let cols = (chunk_w as usize).min(w.saturating_sub(x0));
+        let mut values = Vec::with_capacity(cols * chunk_spp as usize);
         for row in 0..rows_here {
             let y = cy as usize * chunk_h as usize + row;
             if y >= h {
                 break;
             }
             let row_data = &bytes[row * row_bytes..(row + 1) * row_bytes];
-            for col in 0..chunk_w as usize {
-                let x = cx as usize * chunk_w as usize + col;
-                if x >= w {
-                    break;
+            row_to_f32(
+                row_data,
+                cols * chunk_spp as usize,
+                bits as usize,
+                kind,
+                big_endian,
+                max_value,
+                &mut values,
+            );
+            let start = (y * w + x0) * nc;
+            if planar == 2 {
+                let c = plane as usize;
+                for (i, &v) in values.iter().enumerate() {
+                    out[start + i * nc + c] = v;
                 }
-                for s in 0..chunk_spp as usize {
-                    let index = col * chunk_spp as usize + s;
-                    let v = sample(row_data, index, bits as usize, kind, big_endian, max_value);
-                    let c = if planar == 2 { plane as usize } else { s };
-                    out[(y * w + x) * nc + c] = v;
-                }
+            } else {
+                out[start..start + values.len()].copy_from_slice(&values);
             }
         }
     }
@@ -698,6 +712,40 @@ fn expand_palette(
         channels: vec!["r".into(), "g".into(), "b".into()],
         data,
     })
+}
+
+/// The first `n` samples of a decoded row, normalised, into `out` (cleared first). The common
+/// 8/16/32-bit cases are tight loops; the rest go through [`sample`].
+fn row_to_f32(
+    row: &[u8],
+    n: usize,
+    bits: usize,
+    kind: SampleKind,
+    be: bool,
+    max: f64,
+    out: &mut Vec<f32>,
+) {
+    out.clear();
+    match (bits, kind) {
+        (8, SampleKind::Unsigned) => out.extend(row[..n].iter().map(|&b| b as f32 / 255.0)),
+        (16, SampleKind::Unsigned) => out.extend(row[..2 * n].chunks_exact(2).map(|c| {
+            let v = if be {
+                u16::from_be_bytes([c[0], c[1]])
+            } else {
+                u16::from_le_bytes([c[0], c[1]])
+            };
+            v as f32 / 65535.0
+        })),
+        (32, SampleKind::Float) => out.extend(row[..4 * n].chunks_exact(4).map(|c| {
+            let b = [c[0], c[1], c[2], c[3]];
+            if be {
+                f32::from_be_bytes(b)
+            } else {
+                f32::from_le_bytes(b)
+            }
+        })),
+        _ => out.extend((0..n).map(|i| sample(row, i, bits, kind, be, max))),
+    }
 }
 
 /// Sample `index` of a decoded row, normalised: integers to [0, 1] (signed to [-1, 1]).
