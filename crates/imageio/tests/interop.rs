@@ -309,6 +309,24 @@ fn oiio_reads_every_display_kind_we_write() {
                 }
             }
         }
+        if case.oiio_format == "zfile" {
+            // OpenImageIO's zfile reader shows both matrices in file order.
+            let out = Command::new("iinfo").arg("-v").arg(&path).output().unwrap();
+            let text = String::from_utf8_lossy(&out.stdout);
+            for (key, m) in [
+                ("worldtocamera:", depth.world_to_camera),
+                ("worldtoscreen:", depth.world_to_screen),
+            ] {
+                let shown: Vec<f32> = text
+                    .lines()
+                    .find_map(|l| l.trim().strip_prefix(key))
+                    .map(|l| l.split(',').map(|v| v.trim().parse().unwrap()).collect())
+                    .unwrap_or_default();
+                if shown != m {
+                    failures.push(format!("zfile {key} {shown:?}, expected {m:?}"));
+                }
+            }
+        }
         let theirs = oiio_stats(&path);
         let ours = our_stats(&read_image(&path).unwrap());
         assert_eq!(theirs.len(), ours.len(), "{}", case.file);
@@ -535,4 +553,45 @@ fn check_close(back: &Image, image: &Image, tol: f32, file: &str) {
         worst <= tol + 1e-7,
         "{file}: worst difference {worst} > {tol}"
     );
+}
+
+#[test]
+fn zfile_written_by_openimageio_reads_exactly() {
+    if !have("oiiotool") {
+        return;
+    }
+    let dir = scratch("oiio-zfile");
+    let z = dir.join("ramp.zfile");
+    let exr = dir.join("ramp.exr");
+    let ok = Command::new("oiiotool")
+        .args([
+            "--pattern",
+            "fill:top=1:bottom=9",
+            "13x7",
+            "1",
+            "-d",
+            "float",
+            "-o",
+        ])
+        .arg(&z)
+        .status()
+        .unwrap()
+        .success()
+        && Command::new("oiiotool")
+            .arg(&z)
+            .args(["-d", "float", "-o"])
+            .arg(&exr)
+            .status()
+            .unwrap()
+            .success();
+    assert!(ok);
+    let (ours, matrices) = read_zfile(&z).unwrap();
+    assert_eq!((ours.width, ours.height), (13, 7));
+    assert_eq!(ours.channels, ["z"]);
+    let identity: [f32; 16] = std::array::from_fn(|i| if i % 5 == 0 { 1.0 } else { 0.0 });
+    assert_eq!(matrices.world_to_camera, identity);
+    let theirs = read_image(&exr).unwrap();
+    assert_eq!(ours.data, theirs.data);
+    // Top row first: the ramp runs from 1 at the top to 9 at the bottom.
+    assert!(ours.at(0, 0, 0) < ours.at(0, 6, 0));
 }
