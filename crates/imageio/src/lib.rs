@@ -12,12 +12,15 @@
 //! | kind | file | samples |
 //! |---|---|---|
 //! | `tiff`, `file` | TIFF, Deflate-compressed strips | 8/16-bit per [`Quantize`], 32-bit float when `one == 0`; any image with a `z` channel is all float (depth is never quantized) |
-//! | `png` | PNG | 8/16-bit per [`Quantize`] (float settings write 16-bit); a `z` channel is dropped |
+//! | `png` | PNG | 8/16-bit per [`Quantize`] (float settings write 16-bit); colour divided by alpha (PNG alpha is unassociated); a `z` channel is dropped |
 //! | `openexr`, `exr` | OpenEXR, ZIP | colour as `half` unless `Quantize` has `one == 0`, then 32-bit float; `Z` always float; never quantized or clamped (EXR is linear HDR) |
 //! | `zfile` | PRMan zfile | the `z` channel as float32 plus the [`DepthMatrices`] |
 //! | `framebuffer` | PNG at [`framebuffer_path`] | as `png` |
 //!
 //! `shadow` (a `.sm` texture) is written by the texture crate, not here.
+//!
+//! `read_image` returns premultiplied colour whatever the format (PNG colour is multiplied by
+//! its alpha on reading, as OpenImageIO does).
 //!
 //! # Channel names
 //! Images carry lower-case names: `r`, `g`, `b`, `a`, `z`, and `y` for a single grey channel
