@@ -70,7 +70,7 @@ pub(crate) fn write_exr(
     })
 }
 
-/// `Np · S`: screen space ([-1,1]², y up) to NDC ([0,1]², y down), in row-vector order.
+/// `Np · S`: screen space (`[-1,1]²`, y up) to NDC (`[0,1]²`, y down), in row-vector order.
 /// The map is affine in x and y, so it applies to homogeneous coordinates before the divide:
 /// `x_ndc·w = 0.5·x + 0.5·w`, `y_ndc·w = -0.5·y + 0.5·w`.
 pub fn world_to_ndc(world_to_screen: &[f32; 16]) -> [f32; 16] {
