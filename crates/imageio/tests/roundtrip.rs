@@ -608,3 +608,112 @@ fn dithered_crops_tile_into_the_full_frame_bit_for_bit() {
     }
     assert_eq!(pasted, whole.data);
 }
+
+#[test]
+fn hostile_openexr_and_png_sizes_are_refused() {
+    let dir = scratch("hostile2");
+    // OpenEXR: patch the dataWindow box to 2e9 × 2e9 pixels.
+    let path = dir.join("ok.exr");
+    write_display(
+        &path,
+        "exr",
+        &pattern(4, 4, "rgba"),
+        Quantize::RGBA_DEFAULT,
+        None,
+    )
+    .unwrap();
+    let mut b = std::fs::read(&path).unwrap();
+    let key = b"dataWindow\0box2i\0";
+    let at = b.windows(key.len()).position(|w| w == key).unwrap() + key.len() + 4;
+    b[at + 8..at + 12].copy_from_slice(&2_000_000_000i32.to_le_bytes());
+    b[at + 12..at + 16].copy_from_slice(&2_000_000_000i32.to_le_bytes());
+    let bad = dir.join("huge.exr");
+    std::fs::write(&bad, &b).unwrap();
+    assert!(read_image(&bad).is_err());
+
+    // PNG: an IHDR claiming 1 000 000 × 1 000 000 RGBA pixels (with a valid CRC).
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend(1_000_000u32.to_be_bytes());
+    ihdr.extend(1_000_000u32.to_be_bytes());
+    ihdr.extend([8, 6, 0, 0, 0]);
+    let mut png = vec![0x89, b'P', b'N', b'G', 0x0D, 0x0A, 0x1A, 0x0A];
+    png.extend(13u32.to_be_bytes());
+    png.extend(&ihdr);
+    png.extend(crc32(&ihdr).to_be_bytes());
+    let bad = dir.join("huge.png");
+    std::fs::write(&bad, &png).unwrap();
+    let err = read_image(&bad).unwrap_err().to_string();
+    assert!(err.contains("huge.png"), "{err}");
+}
+
+/// CRC-32 (ISO 3309, as PNG uses), bit by bit: an independent reference for the test PNG.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = 0xFFFF_FFFFu32;
+    for &b in bytes {
+        crc ^= b as u32;
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn image_strategy() -> impl Strategy<Value = Image> {
+        (
+            1u32..20,
+            1u32..20,
+            prop::sample::select(vec!["rgb", "rgba", "a", "ya"]),
+        )
+            .prop_flat_map(|(w, h, mode)| {
+                let n = (w * h) as usize * mode.len();
+                prop::collection::vec(-0.5f32..1.5, n).prop_map(move |data| Image {
+                    width: w,
+                    height: h,
+                    channels: mode.chars().map(|c| c.to_string()).collect(),
+                    data,
+                })
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        #[test]
+        fn tiff_round_trip_equals_quantize(
+            image in image_strategy(),
+            one in prop::sample::select(vec![255, 1000, 65535]),
+            dither in 0.0f32..1.0,
+        ) {
+            let q = Quantize { one, min: 0, max: one, dither };
+            let dir = scratch("prop");
+            let path = dir.join("p.tif");
+            write_display(&path, "tiff", &image, q, None).unwrap();
+            let back = read_image(&path).unwrap();
+            let scale = if one <= 255 { 255.0 } else { 65535.0 };
+            prop_assert_eq!(&back.channels, &image.channels);
+            prop_assert_eq!(back.data, expected(&image, q, scale));
+        }
+
+        #[test]
+        fn quantized_values_stay_within_min_max_and_error_bound(
+            v in -10.0f32..10.0, x in 0u32..5000, y in 0u32..5000,
+            min in 0i32..100, span in 1i32..60000, dither in 0.0f32..2.0,
+        ) {
+            let q = Quantize { one: 255, min, max: min + span, dither };
+            let out = q.quantize(v, x, y, 0);
+            prop_assert!(out >= min as f64 && out <= (min + span).min(65535) as f64);
+            let unclamped = 255.0 * v as f64;
+            if unclamped > min as f64 + 3.0 && unclamped < (min + span) as f64 - 3.0 {
+                prop_assert!((out - unclamped).abs() <= 0.5 + dither as f64 + 1e-9);
+            }
+        }
+    }
+}
