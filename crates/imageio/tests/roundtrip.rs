@@ -717,3 +717,30 @@ mod properties {
         }
     }
 }
+
+#[test]
+fn lzw_tables_fill_and_reset_on_noisy_large_strips() {
+    use tiff::encoder::{colortype, Compression, TiffEncoder};
+    let dir = scratch("lzwbig");
+    let (w, h) = (300u32, 200u32);
+    // Noise (every code adds a table entry, so 12-bit codes and clears occur) mixed with runs
+    // (long strings, deep prefix chains).
+    let data: Vec<u8> = (0..w * h * 3)
+        .map(|i| {
+            if (i / 997) % 3 == 0 {
+                (i / 4000) as u8
+            } else {
+                ((dither_noise(i, 7, 1) + 1.0) * 127.9) as u8
+            }
+        })
+        .collect();
+    let path = dir.join("big.tif");
+    TiffEncoder::new(std::fs::File::create(&path).unwrap())
+        .unwrap()
+        .with_compression(Compression::Lzw)
+        .write_image::<colortype::RGB8>(w, h, &data)
+        .unwrap();
+    let back = read_image(&path).unwrap();
+    let want: Vec<f32> = data.iter().map(|&v| v as f32 / 255.0).collect();
+    assert!(back.data == want, "LZW decode differs");
+}
