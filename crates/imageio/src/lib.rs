@@ -11,7 +11,7 @@
 //! # Display types ([`write_display`])
 //! | kind | file | samples |
 //! |---|---|---|
-//! | `tiff`, `file` | TIFF, Deflate-compressed strips | 8/16-bit per [`Quantize`], 32-bit float when `one == 0`; any image with a `z` channel is all float (depth is never quantized) |
+//! | `tiff`, `file` | TIFF, Deflate-compressed strips | 8-bit when `max ≤ 255`, 16-bit when `max ≤ 65535`, else 32-bit float (always when `one == 0`, see [`Quantize::sample_depth`]); any image with a `z` channel is all float (depth is never quantized) |
 //! | `png` | PNG | 8/16-bit per [`Quantize`] (float settings write 16-bit); colour divided by alpha (PNG alpha is unassociated); a `z` channel is dropped |
 //! | `openexr`, `exr` | OpenEXR, ZIP | colour as `half` unless `Quantize` has `one == 0`, then 32-bit float; `Z` always float; never quantized or clamped (EXR is linear HDR) |
 //! | `zfile` | PRMan zfile | the `z` channel as float32 plus the [`DepthMatrices`] |
@@ -24,8 +24,22 @@
 //!
 //! # Channel names
 //! Images carry lower-case names: `r`, `g`, `b`, `a`, `z`, and `y` for a single grey channel
-//! read from a file (TIFF/PNG/JPEG grey, OpenEXR `Y`). Other channels keep their lower-cased file
-//! names (`channel4` for an unnamed fifth TIFF sample).
+//! read from a file (TIFF/PNG/JPEG grey, OpenEXR `Y`). OpenEXR channels keep their lower-cased
+//! names, ordered r, g, b, a, z, y, then the rest. TIFF has no channel names: our writer stores
+//! them in `ImageDescription` (`Illume channels r,g,b,z`); other TIFFs get r,g,b (or y) and then,
+//! for extra samples, `a` for the first alpha (or the first extra when `ExtraSamples` is absent,
+//! as in old Aqsis/PRMan files), `z` for the next unspecified one, and `channelN` after that.
+//!
+//! # Reading
+//! [`read_image`] picks the decoder from the file's signature: TIFF (own decoder: strips or
+//! tiles, contiguous or planar, none/LZW/Deflate/PackBits, predictors 2 and 3, 8/16/32-bit
+//! integers, 16/32/64-bit floats, grey/RGB/palette, any sample count), PNG and JPEG (the `image`
+//! crate), OpenEXR (scanline or tiled, first layer, largest level) and PRMan zfile (either byte
+//! order). Sizes are checked against [`MAX_DIMENSION`] and [`MAX_SAMPLES`] before allocating.
+//!
+//! # Crop windows
+//! [`write_display_cropped`] takes the full-frame position of the image's top-left pixel; dither
+//! is a hash of full-frame (x, y, channel), so crops tile into the full frame bit for bit.
 #![forbid(unsafe_code)]
 
 mod atomic_write;
