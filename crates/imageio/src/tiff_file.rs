@@ -623,6 +623,21 @@ pub(crate) fn decode_tiff(path: &Path, data: &[u8]) -> Result<Image, ImageError>
             channels = names;
         }
     }
+    // Unassociated alpha (ExtraSamples 2): premultiply, so every reader returns associated
+    // colour (as OpenImageIO does).
+    let first_extra = nc - extra.len().min(nc);
+    if let Some(a) = channels.iter().position(|c| c == "a") {
+        if a >= first_extra && extra.get(a - first_extra) == Some(&2) {
+            for px in out.chunks_exact_mut(nc) {
+                let alpha = px[a];
+                for (c, v) in px.iter_mut().enumerate() {
+                    if c != a && channels[c] != "z" {
+                        *v *= alpha;
+                    }
+                }
+            }
+        }
+    }
     if photometric == 3 {
         return expand_palette(&ifd, path, w, h, nc, bits, &out, max_value);
     }

@@ -599,3 +599,44 @@ fn zfile_written_by_openimageio_reads_exactly() {
     // Top row first: the ramp runs from 1 at the top to 9 at the bottom.
     assert!(ours.at(0, 0, 0) < ours.at(0, 6, 0));
 }
+
+#[test]
+fn unassociated_alpha_tiff_reads_back_premultiplied() {
+    if !have("oiiotool") {
+        return;
+    }
+    let dir = scratch("unassociated");
+    // A premultiplied source (colour ≤ alpha), written as float EXR.
+    let mut image = Image::new(32, 8, "rgba");
+    for y in 0..8u32 {
+        for x in 0..32u32 {
+            let a = (x + 1) as f32 / 32.0;
+            let i = ((y * 32 + x) * 4) as usize;
+            image.data[i..i + 4].copy_from_slice(&[a * 0.25, a * y as f32 / 7.0, a, a]);
+        }
+    }
+    let src = dir.join("src.exr");
+    write_display(&src, "exr", &image, Quantize::FLOAT, None).unwrap();
+    // OpenImageIO divides by alpha (`--unpremult`) and tags ExtraSamples = 2 (unassociated).
+    let tif = dir.join("straight.tif");
+    let ok = Command::new("oiiotool")
+        .arg(&src)
+        .args([
+            "--unpremult",
+            "--attrib",
+            "oiio:UnassociatedAlpha",
+            "1",
+            "-d",
+            "float",
+            "-o",
+        ])
+        .arg(&tif)
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok);
+    let back = read_image(&tif).unwrap();
+    for (i, (&b, &a)) in back.data.iter().zip(&image.data).enumerate() {
+        assert!((b - a).abs() <= 1e-6, "sample {i}: {a} → {b}");
+    }
+}
