@@ -4,17 +4,26 @@
 #![forbid(unsafe_code)]
 
 pub mod build;
+pub mod cache;
 pub mod cubeface;
+pub mod environment;
 pub mod filter;
+pub mod lookup;
 pub mod mipmap;
+mod sampler;
+mod shadow;
 pub mod shadowmap;
+mod texture;
 pub mod txfile;
 pub mod wrapmode;
 
 pub use build::{
     make_cube_face_environment, make_latlong_environment, make_shadow, make_texture, MakeOptions, Resize,
 };
+pub use cache::{CacheStats, TextureCache, TextureInfo, TextureKind};
+pub use environment::{latlong_direction, latlong_st};
 pub use filter::FilterKind;
+pub use lookup::LookupOptions;
 pub use txfile::PixelFormat;
 pub use wrapmode::WrapMode;
 
