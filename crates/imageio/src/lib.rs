@@ -7,7 +7,37 @@
 //!   half-written image under the real name.
 //! * [`read_image`] reads any supported file into float RGBA-ish channels for `txmake` and
 //!   textures used directly.
+//!
+//! # Display types ([`write_display`])
+//! | kind | file | samples |
+//! |---|---|---|
+//! | `tiff`, `file` | TIFF, Deflate-compressed strips | 8/16-bit per [`Quantize`], 32-bit float when `one == 0`; any image with a `z` channel is all float (depth is never quantized) |
+//! | `png` | PNG | 8/16-bit per [`Quantize`] (float settings write 16-bit); a `z` channel is dropped |
+//! | `openexr`, `exr` | OpenEXR, ZIP | colour as `half` unless `Quantize` has `one == 0`, then 32-bit float; `Z` always float; never quantized or clamped (EXR is linear HDR) |
+//! | `zfile` | PRMan zfile | the `z` channel as float32 plus the [`DepthMatrices`] |
+//! | `framebuffer` | PNG at [`framebuffer_path`] | as `png` |
+//!
+//! `shadow` (a `.sm` texture) is written by the texture crate, not here.
+//!
+//! # Channel names
+//! Images carry lower-case names: `r`, `g`, `b`, `a`, `z`, and `y` for a single grey channel
+//! read from a file (TIFF/PNG/JPEG grey, OpenEXR `Y`). Other channels keep their lower-cased file
+//! names (`channel4` for an unnamed fifth TIFF sample).
 #![forbid(unsafe_code)]
+
+mod atomic_write;
+mod framebuffer;
+mod openexr;
+mod png_file;
+mod quantize;
+mod raster_limits;
+mod tiff_file;
+mod zfile;
+
+pub use framebuffer::framebuffer_path;
+pub use quantize::{dither_noise, SampleDepth};
+pub use raster_limits::{MAX_DIMENSION, MAX_SAMPLES};
+pub use zfile::{read_zfile, write_zfile, ZFILE_MAGIC};
 
 use std::path::Path;
 use thiserror::Error;
@@ -23,6 +53,76 @@ pub struct Image {
     pub data: Vec<f32>,
 }
 
+impl Image {
+    /// A zero-filled image with the given channel names (`"rgba"` → r,g,b,a).
+    pub fn new(width: u32, height: u32, mode: &str) -> Image {
+        let channels: Vec<String> = mode.chars().map(|c| c.to_string()).collect();
+        let n = width as usize * height as usize * channels.len();
+        Image {
+            width,
+            height,
+            channels,
+            data: vec![0.0; n],
+        }
+    }
+
+    /// Index of the channel called `name`, if present.
+    pub fn channel_index(&self, name: &str) -> Option<usize> {
+        self.channels.iter().position(|c| c == name)
+    }
+
+    /// The value of channel `c` at pixel (`x`, `y`).
+    pub fn at(&self, x: u32, y: u32, c: usize) -> f32 {
+        let nc = self.channels.len();
+        self.data[(y as usize * self.width as usize + x as usize) * nc + c]
+    }
+
+    /// Checks the invariants an encoder relies on.
+    fn validate(&self, path: &Path) -> Result<(), ImageError> {
+        let expected = self.width as u64 * self.height as u64 * self.channels.len() as u64;
+        let found = self.data.len() as u64;
+        if self.width == 0 || self.height == 0 || self.channels.is_empty() {
+            return Err(format_error(
+                path,
+                format!(
+                    "expected a non-empty image, found {}×{} with {} channels",
+                    self.width,
+                    self.height,
+                    self.channels.len()
+                ),
+            ));
+        }
+        if expected != found {
+            return Err(format_error(
+                path,
+                format!(
+                    "expected {expected} samples ({}×{}×{}), found {found}",
+                    self.width,
+                    self.height,
+                    self.channels.len()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A copy holding only the channels `keep` accepts (in their original order).
+    fn select(&self, keep: impl Fn(&str) -> bool) -> Image {
+        let nc = self.channels.len();
+        let idx: Vec<usize> = (0..nc).filter(|&i| keep(&self.channels[i])).collect();
+        let mut data = Vec::with_capacity(self.width as usize * self.height as usize * idx.len());
+        for px in self.data.chunks_exact(nc) {
+            data.extend(idx.iter().map(|&i| px[i]));
+        }
+        Image {
+            width: self.width,
+            height: self.height,
+            channels: idx.iter().map(|&i| self.channels[i].clone()).collect(),
+            data,
+        }
+    }
+}
+
 /// `Quantize "rgba" one min max dither`: `one == 0` means float output.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quantize {
@@ -30,6 +130,13 @@ pub struct Quantize {
     pub min: i32,
     pub max: i32,
     pub dither: f32,
+}
+
+impl Default for Quantize {
+    /// [`Quantize::RGBA_DEFAULT`]: 8-bit, dither amplitude 0.5.
+    fn default() -> Self {
+        Quantize::RGBA_DEFAULT
+    }
 }
 
 /// Camera matrices a depth display records (zfile `Np`/`Nl`, shadow-map attributes), RIB order.
@@ -48,14 +155,31 @@ pub enum ImageError {
         path: String,
         source: std::io::Error,
     },
-    #[error("{path}: unsupported display type `{kind}`")]
+    #[error("{path}: unsupported display type `{kind}` (expected tiff, file, png, openexr, exr, zfile or framebuffer)")]
     UnsupportedDisplay { path: String, kind: String },
     #[error("{path}: {message}")]
     Format { path: String, message: String },
 }
 
+pub(crate) fn format_error(path: &Path, message: impl Into<String>) -> ImageError {
+    ImageError::Format {
+        path: path.display().to_string(),
+        message: message.into(),
+    }
+}
+
+pub(crate) fn io_error(path: &Path, source: std::io::Error) -> ImageError {
+    ImageError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
 /// Writes one display (`Display "name" "type" "mode"`): `kind` is the display type
-/// (`tiff`/`file`, `png`, `openexr`/`exr`, `zfile`, `framebuffer`, …).
+/// (`tiff`/`file`, `png`, `openexr`/`exr`, `zfile`, `framebuffer`), case-insensitive.
+/// `framebuffer` writes to [`framebuffer_path`]`(path)`, not to `path`.
+/// `depth` is required by `zfile` and recorded by `openexr` (as `worldToCamera`/`worldToNDC`
+/// are not derivable here, it is ignored by the other kinds).
 pub fn write_display(
     path: &Path,
     kind: &str,
@@ -63,17 +187,66 @@ pub fn write_display(
     quantize: Quantize,
     depth: Option<&DepthMatrices>,
 ) -> Result<(), ImageError> {
-    let _ = (image, quantize, depth);
-    Err(ImageError::UnsupportedDisplay {
-        path: path.display().to_string(),
-        kind: kind.to_string(),
-    })
+    image.validate(path)?;
+    match kind.to_ascii_lowercase().as_str() {
+        "tiff" | "file" => tiff_file::write_tiff(path, image, quantize),
+        "png" => png_file::write_png(path, image, quantize),
+        "framebuffer" => png_file::write_png(&framebuffer_path(path), image, quantize),
+        "openexr" | "exr" => openexr::write_exr(path, image, quantize),
+        "zfile" => {
+            let Some(depth) = depth else {
+                return Err(format_error(
+                    path,
+                    "zfile display expected the camera's depth matrices, found none",
+                ));
+            };
+            zfile::write_zfile(path, image, depth)
+        }
+        _ => Err(ImageError::UnsupportedDisplay {
+            path: path.display().to_string(),
+            kind: kind.to_string(),
+        }),
+    }
 }
 
-/// Reads TIFF, PNG, JPEG, OpenEXR or PRMan zfile into a float image.
+/// Reads TIFF, PNG, JPEG, OpenEXR or PRMan zfile into a float image, choosing the decoder
+/// from the file's first bytes (not its name). Integer samples are normalised to [0, 1].
 pub fn read_image(path: &Path) -> Result<Image, ImageError> {
-    Err(ImageError::Format {
-        path: path.display().to_string(),
-        message: "not implemented".into(),
-    })
+    let mut magic = [0u8; 8];
+    let n = {
+        use std::io::Read;
+        let mut f = std::fs::File::open(path).map_err(|e| io_error(path, e))?;
+        let mut n = 0;
+        while n < magic.len() {
+            match f.read(&mut magic[n..]) {
+                Ok(0) => break,
+                Ok(k) => n += k,
+                Err(e) => return Err(io_error(path, e)),
+            }
+        }
+        n
+    };
+    let magic = &magic[..n];
+    if magic.starts_with(b"II*\0") || magic.starts_with(b"MM\0*") {
+        tiff_file::read_tiff(path)
+    } else if magic.starts_with(b"II+\0") || magic.starts_with(b"MM\0+") {
+        Err(format_error(
+            path,
+            "BigTIFF is not supported (expected classic TIFF)",
+        ))
+    } else if magic.starts_with(&[0x89, b'P', b'N', b'G']) || magic.starts_with(&[0xFF, 0xD8]) {
+        png_file::read_png_or_jpeg(path)
+    } else if magic.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
+        openexr::read_exr(path)
+    } else if magic.len() >= 4 && zfile::is_zfile_magic(&magic[..4]) {
+        zfile::read_zfile(path).map(|(image, _)| image)
+    } else {
+        Err(format_error(
+            path,
+            format!(
+                "expected a TIFF, PNG, JPEG, OpenEXR or zfile signature, found bytes {:02x?}",
+                magic
+            ),
+        ))
+    }
 }
