@@ -374,62 +374,10 @@ fn renderman_order(names: &[String]) -> Vec<usize> {
     order
 }
 
-/// Reads a non-tiled image used directly as a texture.
+/// Reads a non-tiled image used directly as a texture (TIFF, PNG, JPEG, scan-line OpenEXR).
 fn read_plain_image(path: &Path) -> Result<illume_imageio::Image, TextureError> {
-    let is_exr = path
-        .extension()
-        .map(|e| e.eq_ignore_ascii_case("exr") || e.eq_ignore_ascii_case("tx"))
-        .unwrap_or(false);
-    if is_exr {
-        return read_scanline_exr(path);
-    }
     illume_imageio::read_image(path).map_err(|e| TextureError::Format {
         path: path.display().to_string(),
         message: e.to_string(),
-    })
-}
-
-/// Scan-line OpenEXR through the `exr` crate (first layer, level 0).
-fn read_scanline_exr(path: &Path) -> Result<illume_imageio::Image, TextureError> {
-    use exr::prelude::*;
-    let fail = |e: exr::error::Error| TextureError::Format {
-        path: path.display().to_string(),
-        message: format!("cannot read OpenEXR: {e}"),
-    };
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .map_err(fail)?;
-    let layer = &image.layer_data;
-    let (w, h) = (layer.size.0, layer.size.1);
-    let chans = &layer.channel_data.list;
-    let n = chans.len();
-    let mut data = vec![0.0f32; w * h * n];
-    for (c, ch) in chans.iter().enumerate() {
-        for (i, v) in ch.sample_data.values_as_f32().enumerate() {
-            if i < w * h {
-                data[i * n + c] = v;
-            }
-        }
-    }
-    let names: Vec<String> = chans.iter().map(|c| c.name.to_string().to_ascii_lowercase()).collect();
-    // Reorder to r,g,b,a first like imageio does.
-    let upper: Vec<String> = names.iter().map(|n| n.to_ascii_uppercase()).collect();
-    let order = renderman_order(&upper);
-    let mut out = vec![0.0f32; w * h * n];
-    for p in 0..w * h {
-        for (k, &src) in order.iter().enumerate() {
-            out[p * n + k] = data[p * n + src];
-        }
-    }
-    Ok(illume_imageio::Image {
-        width: w as u32,
-        height: h as u32,
-        channels: order.iter().map(|&i| names[i].clone()).collect(),
-        data: out,
     })
 }
