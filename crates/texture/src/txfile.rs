@@ -83,8 +83,18 @@ pub(crate) fn write_tx(
         ));
     }
     let mut layer_attributes = LayerAttributes::default();
+    layer_attributes.software_name = Some(Text::from("illume txmake"));
     for (name, value) in attributes {
-        layer_attributes.other.insert(Text::from(name), value);
+        // OpenEXR's standard attributes have their own fields in the `exr` crate.
+        match (name, value) {
+            ("envmap", AttributeValue::EnvironmentMap(e)) => layer_attributes.environment_map = Some(e),
+            ("wrapmodes", AttributeValue::Text(t)) => layer_attributes.wrap_mode_name = Some(t),
+            ("worldToCamera", AttributeValue::Matrix4x4(m)) => layer_attributes.world_to_camera = Some(m),
+            ("worldToNDC", AttributeValue::Matrix4x4(m)) => layer_attributes.world_to_normalized_device = Some(m),
+            (name, value) => {
+                layer_attributes.other.insert(Text::from(name), value);
+            }
+        }
     }
     let layer = Layer::new(
         (w, h),
@@ -222,6 +232,19 @@ impl TiledExr {
         let mut attributes: HashMap<String, AttributeValue> = HashMap::new();
         for (k, v) in header.shared_attributes.other.iter().chain(header.own_attributes.other.iter()) {
             attributes.insert(k.to_string(), v.clone());
+        }
+        let own = &header.own_attributes;
+        if let Some(e) = own.environment_map {
+            attributes.insert("envmap".into(), AttributeValue::EnvironmentMap(e));
+        }
+        if let Some(w) = &own.wrap_mode_name {
+            attributes.insert("wrapmodes".into(), AttributeValue::Text(w.clone()));
+        }
+        if let Some(m) = own.world_to_camera {
+            attributes.insert("worldToCamera".into(), AttributeValue::Matrix4x4(m));
+        }
+        if let Some(m) = own.world_to_normalized_device {
+            attributes.insert("worldToNDC".into(), AttributeValue::Matrix4x4(m));
         }
         Ok(Some(TiledExr {
             file,
