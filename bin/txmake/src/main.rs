@@ -60,7 +60,9 @@ fn parse(args: &[String]) -> Result<Args, String> {
     let mut i = 0;
     let value = |i: &mut usize, flag: &str| -> Result<String, String> {
         *i += 1;
-        args.get(*i).cloned().ok_or_else(|| format!("{flag} expects a value"))
+        args.get(*i)
+            .cloned()
+            .ok_or_else(|| format!("{flag} expects a value"))
     };
     let number = |text: String, flag: &str| -> Result<f32, String> {
         text.parse::<f32>()
@@ -69,7 +71,8 @@ fn parse(args: &[String]) -> Result<Args, String> {
             .ok_or_else(|| format!("{flag} expects a positive number, found `{text}`"))
     };
     let wrap = |text: String, flag: &str| -> Result<WrapMode, String> {
-        WrapMode::parse(&text).ok_or_else(|| format!("{flag} expects black, clamp or periodic, found `{text}`"))
+        WrapMode::parse(&text)
+            .ok_or_else(|| format!("{flag} expects black, clamp or periodic, found `{text}`"))
     };
     while i < args.len() {
         let a = args[i].as_str();
@@ -88,7 +91,9 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "-tmode" => opts.wrap[1] = wrap(value(&mut i, a)?, a)?,
             "-resize" => {
                 let v = value(&mut i, a)?;
-                opts.resize = Resize::parse(&v).ok_or_else(|| format!("-resize expects up, down, round or none, found `{v}`"))?;
+                opts.resize = Resize::parse(&v).ok_or_else(|| {
+                    format!("-resize expects up, down, round or none, found `{v}`")
+                })?;
             }
             "-filter" => {
                 let v = value(&mut i, a)?;
@@ -106,7 +111,9 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "-float" => opts.format = PixelFormat::Float,
             "-half" => opts.format = PixelFormat::Half,
             "-short" | "-byte" => {
-                eprintln!("txmake: warning: {a}: OpenEXR textures hold half or float; writing half");
+                eprintln!(
+                    "txmake: warning: {a}: OpenEXR textures hold half or float; writing half"
+                );
                 opts.format = PixelFormat::Half;
             }
             "-fov" => {
@@ -136,7 +143,10 @@ fn parse(args: &[String]) -> Result<Args, String> {
         if files.len() == n {
             Ok(())
         } else {
-            Err(format!("{what} expects {n} file names, found {}", files.len()))
+            Err(format!(
+                "{what} expects {n} file names, found {}",
+                files.len()
+            ))
         }
     };
     let job = match mode {
@@ -180,7 +190,9 @@ fn parse(args: &[String]) -> Result<Args, String> {
 
 fn inputs_and_output(job: &Job) -> (Vec<&Path>, &Path) {
     match job {
-        Job::Plain { input, out } | Job::LatLong { input, out } | Job::Shadow { input, out } => (vec![input.as_path()], out),
+        Job::Plain { input, out } | Job::LatLong { input, out } | Job::Shadow { input, out } => {
+            (vec![input.as_path()], out)
+        }
         Job::Cube { faces, out } => (faces.iter().map(|p| p.as_path()).collect(), out),
     }
 }
@@ -191,9 +203,12 @@ fn up_to_date(job: &Job) -> bool {
     let Ok(out_time) = std::fs::metadata(out).and_then(|m| m.modified()) else {
         return false;
     };
-    inputs
-        .iter()
-        .all(|p| std::fs::metadata(p).and_then(|m| m.modified()).map(|t| t <= out_time).unwrap_or(false))
+    inputs.iter().all(|p| {
+        std::fs::metadata(p)
+            .and_then(|m| m.modified())
+            .map(|t| t <= out_time)
+            .unwrap_or(false)
+    })
 }
 
 fn read(path: &Path) -> Result<illume_imageio::Image, String> {
@@ -203,7 +218,11 @@ fn read(path: &Path) -> Result<illume_imageio::Image, String> {
 fn run(args: &Args) -> Result<(), String> {
     let (inputs, out) = inputs_and_output(&args.job);
     let mut opts = args.opts.clone();
-    opts.source = inputs.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(" ");
+    opts.source = inputs
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(" ");
     let progress = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new_spinner();
         bar.enable_steady_tick(std::time::Duration::from_millis(120));
@@ -230,7 +249,10 @@ fn run(args: &Args) -> Result<(), String> {
             img.width as u64 * img.height as u64
         }
         Job::Cube { faces, out } => {
-            let imgs = faces.iter().map(|p| read(p)).collect::<Result<Vec<_>, _>>()?;
+            let imgs = faces
+                .iter()
+                .map(|p| read(p))
+                .collect::<Result<Vec<_>, _>>()?;
             stage("filtering cube faces".into());
             let refs: [&illume_imageio::Image; 6] = std::array::from_fn(|k| &imgs[k]);
             make_cube_face_environment(refs, out, &opts).map_err(|e| e.to_string())?;
@@ -274,7 +296,10 @@ fn main() -> ExitCode {
     };
     if args.newer && up_to_date(&args.job) {
         if args.verbose {
-            eprintln!("txmake: {} is up to date", inputs_and_output(&args.job).1.display());
+            eprintln!(
+                "txmake: {} is up to date",
+                inputs_and_output(&args.job).1.display()
+            );
         }
         return ExitCode::SUCCESS;
     }
@@ -319,9 +344,15 @@ mod tests {
 
     #[test]
     fn usage_errors_are_reported_not_guessed() {
-        assert!(parse(&argv("-mode wobble a b")).unwrap_err().contains("wobble"));
-        assert!(parse(&argv("-envcube a b c out")).unwrap_err().contains("7 file names"));
-        assert!(parse(&argv("-filterwidth")).unwrap_err().contains("expects a value"));
+        assert!(parse(&argv("-mode wobble a b"))
+            .unwrap_err()
+            .contains("wobble"));
+        assert!(parse(&argv("-envcube a b c out"))
+            .unwrap_err()
+            .contains("7 file names"));
+        assert!(parse(&argv("-filterwidth"))
+            .unwrap_err()
+            .contains("expects a value"));
         assert!(parse(&argv("-bogus a b")).unwrap_err().contains("-bogus"));
         assert!(parse(&argv("-fov 45 -envcube a b c d e f g")).is_err());
     }

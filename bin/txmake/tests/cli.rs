@@ -12,7 +12,10 @@ fn temp(name: &str) -> PathBuf {
 }
 
 fn txmake(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_txmake")).args(args).output().unwrap()
+    Command::new(env!("CARGO_BIN_EXE_txmake"))
+        .args(args)
+        .output()
+        .unwrap()
 }
 
 fn png(name: &str, w: u32, h: u32, value: [f32; 3]) -> String {
@@ -37,13 +40,40 @@ fn png(name: &str, w: u32, h: u32, value: [f32; 3]) -> String {
 fn plain_texture_from_png_with_prman_options() {
     let input = png("in.png", 48, 20, [1.0, 0.5, 0.0]);
     let out = temp("in.tx");
-    let o = txmake(&["-smode", "periodic", "-tmode", "clamp", "-filter", "gaussian", "-filterwidth", "2", "-resize", "up-", &input, out.to_str().unwrap()]);
+    let o = txmake(&[
+        "-smode",
+        "periodic",
+        "-tmode",
+        "clamp",
+        "-filter",
+        "gaussian",
+        "-filterwidth",
+        "2",
+        "-resize",
+        "up-",
+        &input,
+        out.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cache = TextureCache::new(1 << 20);
     let info = cache.info(out.to_str().unwrap()).unwrap();
-    assert_eq!((info.kind, info.width, info.height), (TextureKind::Plain, 64, 32));
-    let c = cache.texture(out.to_str().unwrap(), 0, 3, [[0.3, 0.6]; 4], &LookupOptions::default()).unwrap();
-    assert!((c[0] - 1.0).abs() < 2e-3 && (c[1] - 128.0 / 255.0).abs() < 3e-3 && c[2].abs() < 1e-3, "{c:?}");
+    assert_eq!(
+        (info.kind, info.width, info.height),
+        (TextureKind::Plain, 64, 32)
+    );
+    let c = cache
+        .texture(
+            out.to_str().unwrap(),
+            0,
+            3,
+            [[0.3, 0.6]; 4],
+            &LookupOptions::default(),
+        )
+        .unwrap();
+    assert!(
+        (c[0] - 1.0).abs() < 2e-3 && (c[1] - 128.0 / 255.0).abs() < 3e-3 && c[2].abs() < 1e-3,
+        "{c:?}"
+    );
 }
 
 #[test]
@@ -61,8 +91,19 @@ fn envcube_from_six_faces_and_newer_skips_up_to_date_output() {
     let o = txmake(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cache = TextureCache::new(1 << 20);
-    assert_eq!(cache.info(out.to_str().unwrap()).unwrap().kind, TextureKind::Cube);
-    let c = cache.environment(out.to_str().unwrap(), 0, 1, [glam::Vec3::NEG_Y; 4], &LookupOptions::default()).unwrap();
+    assert_eq!(
+        cache.info(out.to_str().unwrap()).unwrap().kind,
+        TextureKind::Cube
+    );
+    let c = cache
+        .environment(
+            out.to_str().unwrap(),
+            0,
+            1,
+            [glam::Vec3::NEG_Y; 4],
+            &LookupOptions::default(),
+        )
+        .unwrap();
     assert!((c[0] - 0.6).abs() < 3e-3, "ny face is the 4th: {c:?}");
     // -newer: output is newer than the inputs → nothing is rewritten.
     let before = std::fs::metadata(&out).unwrap().modified().unwrap();
@@ -87,23 +128,50 @@ fn shadow_from_zfile() {
         data: vec![3.0; 64],
     };
     let z = temp("shadow.z");
-    illume_imageio::write_zfile(&z, &depth, &DepthMatrices { world_to_screen: m, world_to_camera: m }).unwrap();
+    illume_imageio::write_zfile(
+        &z,
+        &depth,
+        &DepthMatrices {
+            world_to_screen: m,
+            world_to_camera: m,
+        },
+    )
+    .unwrap();
     let sm = temp("shadow.sm");
     let o = txmake(&["-shadow", z.to_str().unwrap(), sm.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cache = TextureCache::new(1 << 20);
-    assert_eq!(cache.info(sm.to_str().unwrap()).unwrap().kind, TextureKind::Shadow);
+    assert_eq!(
+        cache.info(sm.to_str().unwrap()).unwrap().kind,
+        TextureKind::Shadow
+    );
     let behind = glam::Vec3::new(0.1, 0.1, 4.0);
-    let opts = LookupOptions { bias: 0.01, ..LookupOptions::default() };
-    assert_eq!(cache.shadow(sm.to_str().unwrap(), [behind; 4], &opts).unwrap(), 1.0);
+    let opts = LookupOptions {
+        bias: 0.01,
+        ..LookupOptions::default()
+    };
+    assert_eq!(
+        cache
+            .shadow(sm.to_str().unwrap(), [behind; 4], &opts)
+            .unwrap(),
+        1.0
+    );
     let front = glam::Vec3::new(0.1, 0.1, 2.0);
-    assert_eq!(cache.shadow(sm.to_str().unwrap(), [front; 4], &opts).unwrap(), 0.0);
+    assert_eq!(
+        cache
+            .shadow(sm.to_str().unwrap(), [front; 4], &opts)
+            .unwrap(),
+        0.0
+    );
 }
 
 #[test]
 fn usage_errors_exit_2_and_build_errors_exit_1() {
     assert_eq!(txmake(&[]).status.code(), Some(2));
-    assert_eq!(txmake(&["-mode", "sideways", "a", "b"]).status.code(), Some(2));
+    assert_eq!(
+        txmake(&["-mode", "sideways", "a", "b"]).status.code(),
+        Some(2)
+    );
     assert_eq!(txmake(&["-envcube", "a", "b"]).status.code(), Some(2));
     let o = txmake(&["/no/such/input.tif", temp("never.tx").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));

@@ -118,25 +118,38 @@ impl MakeOptions {
         })
     }
 
-    fn base_attributes(&self, format: &str, wrap: [WrapMode; 2]) -> Vec<(&'static str, AttributeValue)> {
+    fn base_attributes(
+        &self,
+        format: &str,
+        wrap: [WrapMode; 2],
+    ) -> Vec<(&'static str, AttributeValue)> {
         let r = self.resampler(wrap);
         vec![
             ("textureformat", AttributeValue::Text(Text::from(format))),
-            ("wrapmodes", AttributeValue::Text(Text::from(format_wrapmodes(wrap).as_str()))),
+            (
+                "wrapmodes",
+                AttributeValue::Text(Text::from(format_wrapmodes(wrap).as_str())),
+            ),
             (
                 "filter",
                 AttributeValue::Text(Text::from(
                     format!("{} {} {}", self.filter.name(), r.swidth, r.twidth).as_str(),
                 )),
             ),
-            ("source", AttributeValue::Text(Text::from(self.source.as_str()))),
+            (
+                "source",
+                AttributeValue::Text(Text::from(self.source.as_str())),
+            ),
         ]
     }
 }
 
 /// Converts an imageio image into a level plus OpenEXR channel names (`R`,`G`,`B`,`A`,`Z`, or `Y`
 /// for a single grey channel).
-pub(crate) fn image_to_level(image: &Image, what: &Path) -> Result<(Level, Vec<String>), TextureError> {
+pub(crate) fn image_to_level(
+    image: &Image,
+    what: &Path,
+) -> Result<(Level, Vec<String>), TextureError> {
     let nch = image.channels.len();
     let (w, h) = (image.width as usize, image.height as usize);
     if nch == 0 || w == 0 || h == 0 || image.data.len() != w * h * nch {
@@ -155,7 +168,11 @@ pub(crate) fn image_to_level(image: &Image, what: &Path) -> Result<(Level, Vec<S
     let names = if nch == 1 && image.channels[0] != "z" {
         vec!["Y".to_string()]
     } else {
-        image.channels.iter().map(|c| c.to_ascii_uppercase()).collect()
+        image
+            .channels
+            .iter()
+            .map(|c| c.to_ascii_uppercase())
+            .collect()
     };
     Ok((
         Level {
@@ -172,7 +189,10 @@ pub(crate) fn image_to_level(image: &Image, what: &Path) -> Result<(Level, Vec<S
 pub fn make_texture(input: &Image, out: &Path, opts: &MakeOptions) -> Result<(), TextureError> {
     let (mut level0, names) = image_to_level(input, out)?;
     let r = opts.resampler(opts.wrap);
-    let (w, h) = (opts.resize.apply(level0.width), opts.resize.apply(level0.height));
+    let (w, h) = (
+        opts.resize.apply(level0.width),
+        opts.resize.apply(level0.height),
+    );
     if (w, h) != (level0.width, level0.height) {
         level0 = resample(&level0, w, h, &r);
     }
@@ -189,18 +209,35 @@ pub fn make_texture(input: &Image, out: &Path, opts: &MakeOptions) -> Result<(),
 
 /// Builds a lat-long environment (`MakeLatLongEnvironment`, `txmake -envlatl`): periodic in s,
 /// clamped in t; pixels stay in RenderMan orientation (see [`crate::latlong`]).
-pub fn make_latlong_environment(input: &Image, out: &Path, opts: &MakeOptions) -> Result<(), TextureError> {
+pub fn make_latlong_environment(
+    input: &Image,
+    out: &Path,
+    opts: &MakeOptions,
+) -> Result<(), TextureError> {
     let (mut level0, names) = image_to_level(input, out)?;
     let wrap = [WrapMode::Periodic, WrapMode::Clamp];
     let r = opts.resampler(wrap);
-    let (w, h) = (opts.resize.apply(level0.width), opts.resize.apply(level0.height));
+    let (w, h) = (
+        opts.resize.apply(level0.width),
+        opts.resize.apply(level0.height),
+    );
     if (w, h) != (level0.width, level0.height) {
         level0 = resample(&level0, w, h, &r);
     }
     let levels = build_pyramid(level0, &r);
     let mut attrs = opts.base_attributes("LatLong Environment", wrap);
-    attrs.push(("envmap", AttributeValue::EnvironmentMap(EnvironmentMap::LatitudeLongitude)));
-    write_tx(out, &names, &levels, opts.format, opts.compression(out)?, attrs)
+    attrs.push((
+        "envmap",
+        AttributeValue::EnvironmentMap(EnvironmentMap::LatitudeLongitude),
+    ));
+    write_tx(
+        out,
+        &names,
+        &levels,
+        opts.format,
+        opts.compression(out)?,
+        attrs,
+    )
 }
 
 /// Six faces of one cube level, each `n×n`, in OpenEXR face order.
@@ -248,8 +285,13 @@ impl CubeLevel {
                     if x != 0 && y != 0 && x != n - 1 && y != n - 1 {
                         continue;
                     }
-                    let d = face_direction(face, texel_to_coord(x as f32, n), texel_to_coord(y as f32, n));
-                    let key = [d.x, d.y, d.z].map(|v| ((v + 1.0) * 0.5 * (n - 1) as f32).round() as i64);
+                    let d = face_direction(
+                        face,
+                        texel_to_coord(x as f32, n),
+                        texel_to_coord(y as f32, n),
+                    );
+                    let key =
+                        [d.x, d.y, d.z].map(|v| ((v + 1.0) * 0.5 * (n - 1) as f32).round() as i64);
                     groups.entry(key).or_default().push((face as usize, x, y));
                 }
             }
@@ -315,15 +357,19 @@ impl CubeLevel {
                             }
                         }
                         let i0 = (y * n + x) * c;
-                        for k in 0..c {
-                            out.data[i0 + k] = if wsum != 0.0 { acc[k] / wsum } else { 0.0 };
+                        for (o, a) in out.data[i0..i0 + c].iter_mut().zip(&acc) {
+                            *o = if wsum != 0.0 { a / wsum } else { 0.0 };
                         }
                     }
                 }
                 out
             })
             .collect();
-        let mut level = CubeLevel { n, channels: c, faces };
+        let mut level = CubeLevel {
+            n,
+            channels: c,
+            faces,
+        };
         level.weld_edges();
         level
     }
@@ -358,7 +404,11 @@ fn sample_input(l: &Level, x: f32, y: f32, out: &mut [f32]) {
 }
 
 /// Builds the in-memory cube pyramid from Table 9.1 faces (used by the builder and by tests).
-pub(crate) fn cube_pyramid(faces: [&Image; 6], out: &Path, opts: &MakeOptions) -> Result<(Vec<CubeLevel>, Vec<String>), TextureError> {
+pub(crate) fn cube_pyramid(
+    faces: [&Image; 6],
+    out: &Path,
+    opts: &MakeOptions,
+) -> Result<(Vec<CubeLevel>, Vec<String>), TextureError> {
     let mut inputs = Vec::with_capacity(6);
     let mut names: Option<Vec<String>> = None;
     for (k, img) in faces.iter().enumerate() {
@@ -384,7 +434,11 @@ pub(crate) fn cube_pyramid(faces: [&Image; 6], out: &Path, opts: &MakeOptions) -
     }
     // Face resolution: the part of the input covering exactly 90°, rounded to a power of two so
     // every face level has an integer size (OpenEXR's stacked round-down levels stay 6:1).
-    let w_in = inputs.iter().map(|l| l.width.max(l.height)).max().unwrap_or(1);
+    let w_in = inputs
+        .iter()
+        .map(|l| l.width.max(l.height))
+        .max()
+        .unwrap_or(1);
     let covered = w_in as f32 / (0.5 * opts.fov.to_radians()).tan();
     let n = match opts.resize {
         Resize::Down => Resize::Down.apply(covered.round().max(2.0) as usize),
@@ -400,7 +454,11 @@ pub(crate) fn cube_pyramid(faces: [&Image; 6], out: &Path, opts: &MakeOptions) -
             let mut tmp = vec![0.0f32; c];
             for y in 0..n {
                 for x in 0..n {
-                    let d = face_direction(face, texel_to_coord(x as f32, n), texel_to_coord(y as f32, n));
+                    let d = face_direction(
+                        face,
+                        texel_to_coord(x as f32, n),
+                        texel_to_coord(y as f32, n),
+                    );
                     // The input face whose view axis is the major axis of d (same tie rule as lookups).
                     let k = match CubeFace::of(d) {
                         CubeFace::PosX => 0,
@@ -443,7 +501,11 @@ pub(crate) fn cube_pyramid(faces: [&Image; 6], out: &Path, opts: &MakeOptions) -
 /// Builds a cube-face environment (`MakeCubeFaceEnvironment px nx py ny pz nz`, `txmake -envcube`)
 /// from faces in Table 9.1's orientation, rendered with field of view `opts.fov` (≥ 90°; the
 /// margin beyond 90° is used, not cropped away, so edge texels are interpolated, not clamped).
-pub fn make_cube_face_environment(faces: [&Image; 6], out: &Path, opts: &MakeOptions) -> Result<(), TextureError> {
+pub fn make_cube_face_environment(
+    faces: [&Image; 6],
+    out: &Path,
+    opts: &MakeOptions,
+) -> Result<(), TextureError> {
     let (cube, names) = cube_pyramid(faces, out, opts)?;
     let n0 = cube[0].n;
     let mut levels: Vec<Level> = cube.iter().map(|l| l.stacked()).collect();
@@ -452,12 +514,30 @@ pub fn make_cube_face_environment(faces: [&Image; 6], out: &Path, opts: &MakeOpt
     let r = opts.resampler([WrapMode::Clamp; 2]);
     while levels.len() < total {
         let l = levels.len();
-        let prev = levels.last().cloned().unwrap_or_else(|| Level::new(1, 1, 1));
-        levels.push(resample(&prev, level_size(n0, l), level_size(6 * n0, l), &r));
+        let prev = levels
+            .last()
+            .cloned()
+            .unwrap_or_else(|| Level::new(1, 1, 1));
+        levels.push(resample(
+            &prev,
+            level_size(n0, l),
+            level_size(6 * n0, l),
+            &r,
+        ));
     }
     let mut attrs = opts.base_attributes("CubeFace Environment", [WrapMode::Clamp; 2]);
-    attrs.push(("envmap", AttributeValue::EnvironmentMap(EnvironmentMap::Cube)));
-    write_tx(out, &names, &levels, opts.format, opts.compression(out)?, attrs)
+    attrs.push((
+        "envmap",
+        AttributeValue::EnvironmentMap(EnvironmentMap::Cube),
+    ));
+    write_tx(
+        out,
+        &names,
+        &levels,
+        opts.format,
+        opts.compression(out)?,
+        attrs,
+    )
 }
 
 /// Converts the zfile's world→screen matrix (screen window on [-1,1]², y up) to OpenEXR's
@@ -480,7 +560,12 @@ pub fn screen_to_ndc(world_to_screen: &[f32; 16]) -> [f32; 16] {
 /// Builds a shadow map (`MakeShadow`, `txmake -shadow`): one float channel `Z` of light-camera
 /// depths; coarser levels of `Z` hold the *minimum* depth under each texel and channel `Zmax`
 /// the maximum, so wide lookups decide fully lit/fully shadowed regions without sampling.
-pub fn make_shadow(depth: &Image, matrices: &DepthMatrices, out: &Path, opts: &MakeOptions) -> Result<(), TextureError> {
+pub fn make_shadow(
+    depth: &Image,
+    matrices: &DepthMatrices,
+    out: &Path,
+    opts: &MakeOptions,
+) -> Result<(), TextureError> {
     let (level0, _) = image_to_level(depth, out)?;
     let zc = depth
         .channels
@@ -493,8 +578,14 @@ pub fn make_shadow(depth: &Image, matrices: &DepthMatrices, out: &Path, opts: &M
     }
     let levels = build_minmax(z);
     let mut attrs = opts.base_attributes("Shadow", [WrapMode::Clamp; 2]);
-    attrs.push(("worldToCamera", AttributeValue::Matrix4x4(matrices.world_to_camera)));
-    attrs.push(("worldToNDC", AttributeValue::Matrix4x4(screen_to_ndc(&matrices.world_to_screen))));
+    attrs.push((
+        "worldToCamera",
+        AttributeValue::Matrix4x4(matrices.world_to_camera),
+    ));
+    attrs.push((
+        "worldToNDC",
+        AttributeValue::Matrix4x4(screen_to_ndc(&matrices.world_to_screen)),
+    ));
     write_tx(
         out,
         &["Z".to_string(), "Zmax".to_string()],

@@ -84,7 +84,7 @@ pub struct TextureInfo {
 }
 
 pub(crate) enum Backing {
-    Tiled(TiledExr),
+    Tiled(Box<TiledExr>),
     Memory(Vec<Level>),
 }
 
@@ -122,10 +122,13 @@ struct Shard {
 
 const SHARDS: usize = 16;
 
+/// An opened file, or why it could not be opened (remembered so failures cost one `open`).
+type FileEntry = Result<Arc<TexFile>, Arc<TextureError>>;
+
 /// The shared, bounded texture cache.
 pub struct TextureCache {
     max_bytes: AtomicUsize,
-    files: RwLock<HashMap<String, Result<Arc<TexFile>, Arc<TextureError>>>>,
+    files: RwLock<HashMap<String, FileEntry>>,
     shards: Vec<Mutex<Shard>>,
     next_id: AtomicU64,
     clock: AtomicU64,
@@ -140,7 +143,9 @@ pub struct TextureCache {
 
 impl std::fmt::Debug for TextureCache {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("TextureCache").field("stats", &self.stats()).finish()
+        f.debug_struct("TextureCache")
+            .field("stats", &self.stats())
+            .finish()
     }
 }
 
@@ -155,7 +160,11 @@ fn clone_error(e: &TextureError) -> TextureError {
             path: path.clone(),
             message: message.clone(),
         },
-        TextureError::WrongKind { path, expected, found } => TextureError::WrongKind {
+        TextureError::WrongKind {
+            path,
+            expected,
+            found,
+        } => TextureError::WrongKind {
             path: path.clone(),
             expected,
             found,
@@ -236,7 +245,9 @@ impl TextureCache {
     fn open(&self, name: &str) -> Result<TexFile, TextureError> {
         let path = Path::new(name);
         if !path.exists() {
-            return Err(TextureError::Missing { path: name.to_string() });
+            return Err(TextureError::Missing {
+                path: name.to_string(),
+            });
         }
         self.files_opened.fetch_add(1, Ordering::Relaxed);
         let id = self.next_id.fetch_add(1, Ordering::Relaxed);
@@ -246,7 +257,9 @@ impl TextureCache {
             let envmap = tx.envmap();
             let kind = if format.eq_ignore_ascii_case("Shadow") {
                 TextureKind::Shadow
-            } else if format.starts_with("CubeFace") || envmap == Some(exr::meta::attribute::EnvironmentMap::Cube) {
+            } else if format.starts_with("CubeFace")
+                || envmap == Some(exr::meta::attribute::EnvironmentMap::Cube)
+            {
                 TextureKind::Cube
             } else if format.starts_with("LatLong")
                 || envmap == Some(exr::meta::attribute::EnvironmentMap::LatitudeLongitude)
@@ -259,7 +272,10 @@ impl TextureCache {
                 .text("wrapmodes")
                 .and_then(|w| parse_wrapmodes(&w))
                 .unwrap_or([WrapMode::Black; 2]);
-            let m = |n: &str| tx.matrix(n).map(|a| DMat4::from_cols_array(&a.map(|v| v as f64)));
+            let m = |n: &str| {
+                tx.matrix(n)
+                    .map(|a| DMat4::from_cols_array(&a.map(|v| v as f64)))
+            };
             let (wtc, wtn) = (m("worldToCamera"), m("worldToNDC"));
             if kind == TextureKind::Cube {
                 let (w, h) = tx.levels[0];
@@ -282,7 +298,7 @@ impl TextureCache {
                 wrap,
                 world_to_camera: wtc,
                 world_to_ndc: wtn,
-                backing: Backing::Tiled(tx),
+                backing: Backing::Tiled(Box::new(tx)),
             });
         }
         // Not a tiled texture: read the whole image and mip-map it in memory.
@@ -313,12 +329,21 @@ impl TextureCache {
     }
 
     /// Fetches a tile, reading it on a miss.
-    pub(crate) fn tile(&self, f: &TexFile, tx: &TiledExr, level: usize, x: usize, y: usize) -> Result<Arc<Tile>, TextureError> {
+    pub(crate) fn tile(
+        &self,
+        f: &TexFile,
+        tx: &TiledExr,
+        level: usize,
+        x: usize,
+        y: usize,
+    ) -> Result<Arc<Tile>, TextureError> {
         let key: TileKey = (f.id, level as u32, x as u32, y as u32);
         let shard_index = (key.0 as usize * 31 + level * 17 + x * 7 + y * 13) % SHARDS;
         let tick = self.clock.fetch_add(1, Ordering::Relaxed);
         {
-            let mut shard = self.shards[shard_index].lock().unwrap_or_else(|p| p.into_inner());
+            let mut shard = self.shards[shard_index]
+                .lock()
+                .unwrap_or_else(|p| p.into_inner());
             if let Some((t, last)) = shard.map.get_mut(&key) {
                 *last = tick;
                 self.tile_hits.fetch_add(1, Ordering::Relaxed);
@@ -330,7 +355,9 @@ impl TextureCache {
         let tile = Arc::new(Tile { w, data });
         self.tiles_read.fetch_add(1, Ordering::Relaxed);
         self.bytes_read.fetch_add(bytes as u64, Ordering::Relaxed);
-        let mut shard = self.shards[shard_index].lock().unwrap_or_else(|p| p.into_inner());
+        let mut shard = self.shards[shard_index]
+            .lock()
+            .unwrap_or_else(|p| p.into_inner());
         if let Some((t, _)) = shard.map.get(&key) {
             return Ok(t.clone());
         }

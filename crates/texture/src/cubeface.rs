@@ -123,7 +123,13 @@ pub const TABLE_9_1: [(Vec3, Vec3, Vec3); 6] = [
 /// Where direction `d` lands in input face `k` (Table 9.1 order) rendered with field of view
 /// `fov` degrees: continuous pixel coordinates `(x, y)` with pixel centres at `i + 0.5`,
 /// or `None` when `d` points away from that face's view axis.
-pub fn input_face_pixel(k: usize, d: Vec3, fov_degrees: f32, w: usize, h: usize) -> Option<(f32, f32)> {
+pub fn input_face_pixel(
+    k: usize,
+    d: Vec3,
+    fov_degrees: f32,
+    w: usize,
+    h: usize,
+) -> Option<(f32, f32)> {
     let (view, up, right) = TABLE_9_1[k];
     let z = d.dot(view);
     if z <= 0.0 {

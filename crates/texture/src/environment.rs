@@ -28,7 +28,11 @@ pub fn latlong_st(d: Vec3) -> (f32, f32) {
 /// Inverse of [`latlong_st`].
 pub fn latlong_direction(s: f32, t: f32) -> Vec3 {
     let (phi, theta) = (s * 2.0 * PI, t * PI);
-    Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+    Vec3::new(
+        theta.sin() * phi.cos(),
+        theta.sin() * phi.sin(),
+        theta.cos(),
+    )
 }
 
 impl TextureCache {
@@ -60,7 +64,11 @@ impl TextureCache {
         let big_b = ((d[2] - d[0]) + (d[3] - d[1])) * 0.5 * opts.twidth;
         let (t1, t2) = c.any_orthonormal_pair();
         let blur = (opts.blur + 0.5 * (opts.sblur + opts.tblur)) * 0.5 * PI;
-        let mut fp = footprint([big_a.dot(t1), big_a.dot(t2)], [big_b.dot(t1), big_b.dot(t2)], [blur, blur]);
+        let mut fp = footprint(
+            [big_a.dot(t1), big_a.dot(t2)],
+            [big_b.dot(t1), big_b.dot(t2)],
+            [blur, blur],
+        );
         fp.major = fp.major.min(PI);
         fp.minor = fp.minor.min(PI);
         let cube = f.kind == TextureKind::Cube;
@@ -88,8 +96,20 @@ impl TextureCache {
                     cube_trilinear(&mut s, &f, pd, size, texel0, max_lod, wt, &mut acc)?;
                 } else {
                     let (ps, pt) = latlong_st(pd);
-                    let lod = if size > texel0 { (size / texel0).log2() } else { 0.0 };
-                    s.trilinear(ps, pt, lod, max_lod, [WrapMode::Periodic, WrapMode::Clamp], wt, &mut acc)?;
+                    let lod = if size > texel0 {
+                        (size / texel0).log2()
+                    } else {
+                        0.0
+                    };
+                    s.trilinear(
+                        ps,
+                        pt,
+                        lod,
+                        max_lod,
+                        [WrapMode::Periodic, WrapMode::Clamp],
+                        wt,
+                        &mut acc,
+                    )?;
                 }
                 wsum += wt;
             }
@@ -116,7 +136,11 @@ fn cube_trilinear(
     let r2 = 1.0 + col * col + row * row;
     // Plane length per radian grows as r (tangential) and r² (radial): use the geometric mean.
     let texels = size * r2.powf(0.75) / texel0;
-    let lod = if texels > 1.0 { texels.log2().min(max_lod as f32) } else { 0.0 };
+    let lod = if texels > 1.0 {
+        texels.log2().min(max_lod as f32)
+    } else {
+        0.0
+    };
     let l0 = lod.floor() as usize;
     let fr = lod - l0 as f32;
     cube_bilinear(s, f, face as usize, col, row, l0, weight * (1.0 - fr), acc)?;

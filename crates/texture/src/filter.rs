@@ -52,9 +52,10 @@ impl FilterKind {
         match self {
             FilterKind::Box => 1.0,
             FilterKind::Triangle | FilterKind::Gaussian => 2.0,
-            FilterKind::CatmullRom | FilterKind::Lanczos | FilterKind::Mitchell | FilterKind::Sinc => {
-                4.0
-            }
+            FilterKind::CatmullRom
+            | FilterKind::Lanczos
+            | FilterKind::Mitchell
+            | FilterKind::Sinc => 4.0,
         }
     }
 
@@ -98,7 +99,10 @@ fn cubic(x: f32, b: f32, c: f32) -> f32 {
     let v = if x < 1.0 {
         (12.0 - 9.0 * b - 6.0 * c) * x3 + (-18.0 + 12.0 * b + 6.0 * c) * x2 + (6.0 - 2.0 * b)
     } else if x < 2.0 {
-        (-b - 6.0 * c) * x3 + (6.0 * b + 30.0 * c) * x2 + (-12.0 * b - 48.0 * c) * x + (8.0 * b + 24.0 * c)
+        (-b - 6.0 * c) * x3
+            + (6.0 * b + 30.0 * c) * x2
+            + (-12.0 * b - 48.0 * c) * x
+            + (8.0 * b + 24.0 * c)
     } else {
         0.0
     };
@@ -111,7 +115,15 @@ mod tests {
 
     #[test]
     fn every_filter_peaks_at_zero_and_vanishes_outside_its_width() {
-        for name in ["box", "triangle", "gaussian", "catmull-rom", "lanczos", "mitchell", "sinc"] {
+        for name in [
+            "box",
+            "triangle",
+            "gaussian",
+            "catmull-rom",
+            "lanczos",
+            "mitchell",
+            "sinc",
+        ] {
             let f = FilterKind::parse(name).unwrap();
             let w = f.default_width();
             assert!(f.eval(0.0, w) > 0.6, "{name}");

@@ -18,7 +18,8 @@ pub mod txfile;
 pub mod wrapmode;
 
 pub use build::{
-    make_cube_face_environment, make_latlong_environment, make_shadow, make_texture, MakeOptions, Resize,
+    make_cube_face_environment, make_latlong_environment, make_shadow, make_texture, MakeOptions,
+    Resize,
 };
 pub use cache::{CacheStats, TextureCache, TextureInfo, TextureKind};
 pub use environment::{latlong_direction, latlong_st};
@@ -34,7 +35,10 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum TextureError {
     #[error("{path}: {source}")]
-    Io { path: String, source: std::io::Error },
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
     #[error("{path}: texture not found")]
     Missing { path: String },
     #[error("{path}: {message}")]

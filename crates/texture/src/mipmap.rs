@@ -111,17 +111,20 @@ pub fn resample(src: &Level, w: usize, h: usize, r: &Resampler) -> Level {
         }
     });
     let mut out = Level::new(w, h, c);
-    out.data.par_chunks_mut(w * c).enumerate().for_each(|(y, row)| {
-        let (lo, wts) = &ys.taps[y];
-        for (k, wt) in wts.iter().enumerate() {
-            if let Some(j) = r.wrap[1].texel(lo + k as i64, src.height) {
-                let mrow = &mid[j * w * c..(j + 1) * w * c];
-                for (o, m) in row.iter_mut().zip(mrow) {
-                    *o += wt * m;
+    out.data
+        .par_chunks_mut(w * c)
+        .enumerate()
+        .for_each(|(y, row)| {
+            let (lo, wts) = &ys.taps[y];
+            for (k, wt) in wts.iter().enumerate() {
+                if let Some(j) = r.wrap[1].texel(lo + k as i64, src.height) {
+                    let mrow = &mid[j * w * c..(j + 1) * w * c];
+                    for (o, m) in row.iter_mut().zip(mrow) {
+                        *o += wt * m;
+                    }
                 }
             }
-        }
-    });
+        });
     out
 }
 
@@ -173,7 +176,8 @@ mod tests {
         assert!((last.data[0] as f64 - mean).abs() < 1e-4);
         // Level 1 texel (0,0) is the exact 2×2 average.
         let l0 = &p[0];
-        let avg = (l0.texel(0, 0)[0] + l0.texel(1, 0)[0] + l0.texel(0, 1)[0] + l0.texel(1, 1)[0]) / 4.0;
+        let avg =
+            (l0.texel(0, 0)[0] + l0.texel(1, 0)[0] + l0.texel(0, 1)[0] + l0.texel(1, 1)[0]) / 4.0;
         assert!((p[1].texel(0, 0)[0] - avg).abs() < 1e-5);
     }
 

@@ -6,10 +6,13 @@ use crate::wrapmode::WrapMode;
 use crate::TextureError;
 use std::sync::Arc;
 
+/// (level, tile x, tile y) and the tile.
+type Memo = ((u32, u32, u32), Arc<Tile>);
+
 pub(crate) struct Sampler<'a> {
     pub cache: &'a TextureCache,
     pub file: &'a TexFile,
-    memo: [Option<((u32, u32, u32), Arc<Tile>)>; 4],
+    memo: [Option<Memo>; 4],
     next: usize,
 }
 
@@ -24,7 +27,13 @@ impl<'a> Sampler<'a> {
     }
 
     /// Stored channel `ch` of texel `(x, y)` of level `level` (in range).
-    pub fn texel(&mut self, level: usize, x: usize, y: usize, out: &mut [f32; 8]) -> Result<(), TextureError> {
+    pub fn texel(
+        &mut self,
+        level: usize,
+        x: usize,
+        y: usize,
+        out: &mut [f32; 8],
+    ) -> Result<(), TextureError> {
         let nch = self.file.nch.min(8);
         match &self.file.backing {
             Backing::Memory(levels) => {
@@ -53,7 +62,15 @@ impl<'a> Sampler<'a> {
 
     /// Bilinear filter of level `level` at continuous texel coordinates (centres at `i + 0.5`),
     /// with the file's wrap modes; accumulates `weight ×` the stored channels into `acc`.
-    pub fn bilinear(&mut self, level: usize, x: f32, y: f32, wrap: [WrapMode; 2], weight: f32, acc: &mut [f32; 8]) -> Result<(), TextureError> {
+    pub fn bilinear(
+        &mut self,
+        level: usize,
+        x: f32,
+        y: f32,
+        wrap: [WrapMode; 2],
+        weight: f32,
+        acc: &mut [f32; 8],
+    ) -> Result<(), TextureError> {
         let (w, h) = self.file.levels[level];
         let (fx, fy) = (x - 0.5, y - 0.5);
         let (x0, y0) = (fx.floor(), fy.floor());
@@ -65,12 +82,16 @@ impl<'a> Sampler<'a> {
             if wy == 0.0 {
                 continue;
             }
-            let Some(yy) = wrap[1].texel(y0 + dy, h) else { continue };
+            let Some(yy) = wrap[1].texel(y0 + dy, h) else {
+                continue;
+            };
             for (dx, wx) in [(0i64, 1.0 - ax), (1, ax)] {
                 if wx == 0.0 {
                     continue;
                 }
-                let Some(xx) = wrap[0].texel(x0 + dx, w) else { continue };
+                let Some(xx) = wrap[0].texel(x0 + dx, w) else {
+                    continue;
+                };
                 self.texel(level, xx, yy, &mut t)?;
                 let wt = weight * wx * wy;
                 for c in 0..nch {
@@ -82,12 +103,29 @@ impl<'a> Sampler<'a> {
     }
 
     /// Trilinear: bilinear on the two levels around `lod` (clamped to the pyramid).
-    pub fn trilinear(&mut self, s: f32, t: f32, lod: f32, max_level: usize, wrap: [WrapMode; 2], weight: f32, acc: &mut [f32; 8]) -> Result<(), TextureError> {
+    #[allow(clippy::too_many_arguments)]
+    pub fn trilinear(
+        &mut self,
+        s: f32,
+        t: f32,
+        lod: f32,
+        max_level: usize,
+        wrap: [WrapMode; 2],
+        weight: f32,
+        acc: &mut [f32; 8],
+    ) -> Result<(), TextureError> {
         let lod = lod.clamp(0.0, max_level as f32);
         let l0 = lod.floor() as usize;
         let f = lod - l0 as f32;
         let (w, h) = self.file.levels[l0];
-        self.bilinear(l0, s * w as f32, t * h as f32, wrap, weight * (1.0 - f), acc)?;
+        self.bilinear(
+            l0,
+            s * w as f32,
+            t * h as f32,
+            wrap,
+            weight * (1.0 - f),
+            acc,
+        )?;
         if f > 0.0 && l0 < max_level {
             let (w, h) = self.file.levels[l0 + 1];
             self.bilinear(l0 + 1, s * w as f32, t * h as f32, wrap, weight * f, acc)?;

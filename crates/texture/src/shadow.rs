@@ -28,7 +28,12 @@ fn unit(h: u64) -> f32 {
 
 impl TextureCache {
     /// Fraction of the footprint in shadow: 0 fully lit, 1 fully occluded.
-    pub fn shadow(&self, name: &str, p_world: [Vec3; 4], opts: &LookupOptions) -> Result<f32, TextureError> {
+    pub fn shadow(
+        &self,
+        name: &str,
+        p_world: [Vec3; 4],
+        opts: &LookupOptions,
+    ) -> Result<f32, TextureError> {
         let f = self.file(name)?;
         let (Some(to_ndc), Some(to_cam)) = (f.world_to_ndc, f.world_to_camera) else {
             return Err(TextureError::WrongKind {
@@ -80,7 +85,8 @@ impl TextureCache {
         if let (Some(zmax), true) = (f.zmax, fully_inside) {
             // Coarsest level where the footprint spans at most 2×2 texels.
             let mut l = 0usize;
-            while l + 1 < f.levels.len() && ((x1 >> l) - (x0 >> l) > 1 || (y1 >> l) - (y0 >> l) > 1) {
+            while l + 1 < f.levels.len() && ((x1 >> l) - (x0 >> l) > 1 || (y1 >> l) - (y0 >> l) > 1)
+            {
                 l += 1;
             }
             let (lw, lh) = f.levels[l];

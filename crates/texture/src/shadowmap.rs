@@ -26,8 +26,12 @@ pub fn build_minmax(z: Level) -> Vec<Level> {
             for x in 0..w {
                 let x1 = if x == w - 1 { prev.width } else { 2 * x + 2 };
                 let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-                for py in (2 * y).min(prev.height - 1)..y1.min(prev.height).max((2 * y).min(prev.height - 1) + 1) {
-                    for px in (2 * x).min(prev.width - 1)..x1.min(prev.width).max((2 * x).min(prev.width - 1) + 1) {
+                for py in (2 * y).min(prev.height - 1)
+                    ..y1.min(prev.height).max((2 * y).min(prev.height - 1) + 1)
+                {
+                    for px in (2 * x).min(prev.width - 1)
+                        ..x1.min(prev.width).max((2 * x).min(prev.width - 1) + 1)
+                    {
                         let t = prev.texel(px, py);
                         lo = lo.min(t[0]);
                         hi = hi.max(t[1]);

@@ -51,7 +51,15 @@ impl TextureCache {
                 let ox = u * fp.major * fp.dir[0] + v * minor * perp[0];
                 let oy = u * fp.major * fp.dir[1] + v * minor * perp[1];
                 let wt = opts.probe_weight(u, v);
-                s.trilinear(cs + ox / w, ct + oy / h, lod, max_level, f.wrap, wt, &mut acc)?;
+                s.trilinear(
+                    cs + ox / w,
+                    ct + oy / h,
+                    lod,
+                    max_level,
+                    f.wrap,
+                    wt,
+                    &mut acc,
+                )?;
                 wsum += wt;
             }
         }

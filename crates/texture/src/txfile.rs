@@ -82,15 +82,23 @@ pub(crate) fn write_tx(
             },
         ));
     }
-    let mut layer_attributes = LayerAttributes::default();
-    layer_attributes.software_name = Some(Text::from("illume txmake"));
+    let mut layer_attributes = LayerAttributes {
+        software_name: Some(Text::from("illume txmake")),
+        ..LayerAttributes::default()
+    };
     for (name, value) in attributes {
         // OpenEXR's standard attributes have their own fields in the `exr` crate.
         match (name, value) {
-            ("envmap", AttributeValue::EnvironmentMap(e)) => layer_attributes.environment_map = Some(e),
+            ("envmap", AttributeValue::EnvironmentMap(e)) => {
+                layer_attributes.environment_map = Some(e)
+            }
             ("wrapmodes", AttributeValue::Text(t)) => layer_attributes.wrap_mode_name = Some(t),
-            ("worldToCamera", AttributeValue::Matrix4x4(m)) => layer_attributes.world_to_camera = Some(m),
-            ("worldToNDC", AttributeValue::Matrix4x4(m)) => layer_attributes.world_to_normalized_device = Some(m),
+            ("worldToCamera", AttributeValue::Matrix4x4(m)) => {
+                layer_attributes.world_to_camera = Some(m)
+            }
+            ("worldToNDC", AttributeValue::Matrix4x4(m)) => {
+                layer_attributes.world_to_normalized_device = Some(m)
+            }
             (name, value) => {
                 layer_attributes.other.insert(Text::from(name), value);
             }
@@ -123,7 +131,10 @@ pub(crate) fn write_tx(
 }
 
 fn temp_name(path: &Path) -> std::path::PathBuf {
-    let mut name = path.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    let mut name = path
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
     name.push(format!(".tmp{}", std::process::id()));
     path.with_file_name(name)
 }
@@ -161,8 +172,11 @@ impl TiledExr {
             path: p.clone(),
             message,
         };
-        let meta = MetaData::read_from_buffered(std::io::BufReader::new(File::open(path).map_err(io)?), false)
-            .map_err(|e| fmt(format!("bad OpenEXR header: {e}")))?;
+        let meta = MetaData::read_from_buffered(
+            std::io::BufReader::new(File::open(path).map_err(io)?),
+            false,
+        )
+        .map_err(|e| fmt(format!("bad OpenEXR header: {e}")))?;
         if meta.headers.len() != 1 {
             return Err(fmt("multi-part OpenEXR textures are not supported".into()));
         }
@@ -214,7 +228,10 @@ impl TiledExr {
             .collect();
         for (i, t) in header.blocks_increasing_y_order().enumerate() {
             let l = t.location.level_index.0;
-            if t.location.level_index.0 != t.location.level_index.1 || l >= levels.len() || i >= offsets.len() {
+            if t.location.level_index.0 != t.location.level_index.1
+                || l >= levels.len()
+                || i >= offsets.len()
+            {
                 continue;
             }
             let ntx = levels[l].0.div_ceil(tile.0);
@@ -230,7 +247,12 @@ impl TiledExr {
             .map(|c| (c.name.to_string(), c.sample_type))
             .collect();
         let mut attributes: HashMap<String, AttributeValue> = HashMap::new();
-        for (k, v) in header.shared_attributes.other.iter().chain(header.own_attributes.other.iter()) {
+        for (k, v) in header
+            .shared_attributes
+            .other
+            .iter()
+            .chain(header.own_attributes.other.iter())
+        {
             attributes.insert(k.to_string(), v.clone());
         }
         let own = &header.own_attributes;
@@ -287,7 +309,12 @@ impl TiledExr {
 
     /// Reads and decodes one tile: interleaved f32 in file channel order, `tw·th` texels where
     /// `(tw, th)` is the tile's real (possibly clipped) size.
-    pub fn read_tile(&self, level: usize, tx: usize, ty: usize) -> Result<(usize, usize, Vec<f32>), TextureError> {
+    pub fn read_tile(
+        &self,
+        level: usize,
+        tx: usize,
+        ty: usize,
+    ) -> Result<(usize, usize, Vec<f32>), TextureError> {
         let fmt = |message: String| TextureError::Format {
             path: self.path.clone(),
             message,
@@ -297,17 +324,24 @@ impl TiledExr {
             .get(ty * ntx + tx)
             .ok_or_else(|| fmt(format!("tile ({tx},{ty}) of level {level} out of range")))?;
         if length == 0 {
-            return Err(fmt(format!("tile ({tx},{ty}) of level {level} missing from the offset table")));
+            return Err(fmt(format!(
+                "tile ({tx},{ty}) of level {level} missing from the offset table"
+            )));
         }
         let mut bytes = vec![0u8; length];
-        self.file.read_exact_at(&mut bytes, offset).map_err(|source| TextureError::Io {
-            path: self.path.clone(),
-            source,
-        })?;
+        self.file
+            .read_exact_at(&mut bytes, offset)
+            .map_err(|source| TextureError::Io {
+                path: self.path.clone(),
+                source,
+            })?;
         let chunk = Chunk::read(&mut Cursor::new(bytes), &self.meta)
             .map_err(|e| fmt(format!("bad tile ({tx},{ty}) level {level}: {e}")))?;
-        let block = UncompressedBlock::decompress_chunk(chunk, &self.meta, false)
-            .map_err(|e| fmt(format!("cannot decompress tile ({tx},{ty}) level {level}: {e}")))?;
+        let block = UncompressedBlock::decompress_chunk(chunk, &self.meta, false).map_err(|e| {
+            fmt(format!(
+                "cannot decompress tile ({tx},{ty}) level {level}: {e}"
+            ))
+        })?;
         let (tw, th) = (block.index.pixel_size.0, block.index.pixel_size.1);
         let nch = self.channels.len();
         let mut out = vec![0.0f32; tw * th * nch];
@@ -318,17 +352,23 @@ impl TiledExr {
                 for x in 0..tw {
                     let v = match ty {
                         SampleType::F16 => {
-                            let b = data.get(pos..pos + 2).ok_or_else(|| fmt("short tile".into()))?;
+                            let b = data
+                                .get(pos..pos + 2)
+                                .ok_or_else(|| fmt("short tile".into()))?;
                             pos += 2;
                             f16::from_ne_bytes([b[0], b[1]]).to_f32()
                         }
                         SampleType::F32 => {
-                            let b = data.get(pos..pos + 4).ok_or_else(|| fmt("short tile".into()))?;
+                            let b = data
+                                .get(pos..pos + 4)
+                                .ok_or_else(|| fmt("short tile".into()))?;
                             pos += 4;
                             f32::from_ne_bytes([b[0], b[1], b[2], b[3]])
                         }
                         SampleType::U32 => {
-                            let b = data.get(pos..pos + 4).ok_or_else(|| fmt("short tile".into()))?;
+                            let b = data
+                                .get(pos..pos + 4)
+                                .ok_or_else(|| fmt("short tile".into()))?;
                             pos += 4;
                             u32::from_ne_bytes([b[0], b[1], b[2], b[3]]) as f32
                         }
@@ -354,7 +394,8 @@ fn header_end(file: &File, len: u64) -> Result<u64, String> {
         let mut s = Vec::new();
         loop {
             let mut b = [0u8; 1];
-            r.read_exact(&mut b).map_err(|_| "header runs past the end of the file".to_string())?;
+            r.read_exact(&mut b)
+                .map_err(|_| "header runs past the end of the file".to_string())?;
             if b[0] == 0 {
                 return Ok(s);
             }
@@ -368,7 +409,8 @@ fn header_end(file: &File, len: u64) -> Result<u64, String> {
         }
         let _kind = cstr(&mut r)?;
         let mut size = [0u8; 4];
-        r.read_exact(&mut size).map_err(|_| "truncated attribute".to_string())?;
+        r.read_exact(&mut size)
+            .map_err(|_| "truncated attribute".to_string())?;
         let size = i32::from_le_bytes(size);
         if size < 0 {
             return Err("negative attribute size".into());

@@ -70,7 +70,10 @@ mod tests {
         let m = [WrapMode::Periodic, WrapMode::Clamp];
         assert_eq!(parse_wrapmodes(&format_wrapmodes(m)), Some(m));
         assert_eq!(parse_wrapmodes(" black "), Some([WrapMode::Black; 2]));
-        assert_eq!(parse_wrapmodes("clamp, black "), Some([WrapMode::Clamp, WrapMode::Black]));
+        assert_eq!(
+            parse_wrapmodes("clamp, black "),
+            Some([WrapMode::Clamp, WrapMode::Black])
+        );
         assert_eq!(parse_wrapmodes("mirrorish"), None);
     }
 

@@ -3,7 +3,9 @@
 use glam::Vec3;
 use illume_imageio::Image;
 use illume_texture::cubeface::TABLE_9_1;
-use illume_texture::{make_cube_face_environment, LookupOptions, MakeOptions, PixelFormat, TextureCache};
+use illume_texture::{
+    make_cube_face_environment, LookupOptions, MakeOptions, PixelFormat, TextureCache,
+};
 use std::path::PathBuf;
 
 fn temp(name: &str) -> PathBuf {
@@ -40,8 +42,14 @@ fn point(d: Vec3) -> [Vec3; 4] {
     [d; 4]
 }
 
-fn solid_cube(path: &PathBuf) {
-    let faces: Vec<Image> = (0..6).map(|k| image(32, 32, |_, _| [(k + 1) as f32 / 8.0, 0.25, 1.0 - k as f32 / 8.0])).collect();
+fn solid_cube(path: &std::path::Path) {
+    let faces: Vec<Image> = (0..6)
+        .map(|k| {
+            image(32, 32, |_, _| {
+                [(k + 1) as f32 / 8.0, 0.25, 1.0 - k as f32 / 8.0]
+            })
+        })
+        .collect();
     let refs: [&Image; 6] = std::array::from_fn(|k| &faces[k]);
     make_cube_face_environment(refs, path, &MakeOptions::default()).unwrap();
 }
@@ -56,13 +64,30 @@ fn axis_edge_and_corner_directions_return_the_table_9_1_face() {
     for (k, (view, up, right)) in TABLE_9_1.iter().enumerate() {
         let expect = (k + 1) as f32 / 8.0;
         let mut dirs = vec![*view];
-        for (a, b) in [(0.9, 0.0), (-0.9, 0.0), (0.0, 0.9), (0.0, -0.9), (0.9, 0.9), (-0.9, 0.9), (0.9, -0.9), (-0.9, -0.9)] {
+        for (a, b) in [
+            (0.9, 0.0),
+            (-0.9, 0.0),
+            (0.0, 0.9),
+            (0.0, -0.9),
+            (0.9, 0.9),
+            (-0.9, 0.9),
+            (0.9, -0.9),
+            (-0.9, -0.9),
+        ] {
             dirs.push(*view + *right * a + *up * b);
         }
         for d in dirs {
-            let c = cache.environment(path.to_str().unwrap(), 0, 3, point(d), &opts).unwrap();
-            assert!((c[0] - expect).abs() < 1e-3, "face {k} direction {d}: got {c:?}, expected red {expect}");
-            assert!((c[2] - (1.0 - k as f32 / 8.0)).abs() < 1e-3, "face {k} direction {d}: {c:?}");
+            let c = cache
+                .environment(path.to_str().unwrap(), 0, 3, point(d), &opts)
+                .unwrap();
+            assert!(
+                (c[0] - expect).abs() < 1e-3,
+                "face {k} direction {d}: got {c:?}, expected red {expect}"
+            );
+            assert!(
+                (c[2] - (1.0 - k as f32 / 8.0)).abs() < 1e-3,
+                "face {k} direction {d}: {c:?}"
+            );
         }
     }
 }
@@ -72,7 +97,15 @@ fn cube_lookup_reproduces_the_input_pixels_in_table_9_1_orientation() {
     // Each face encodes the screen position of its pixels: r = x/n, g = y/n, b = face index.
     let n = 64;
     let faces: Vec<Image> = (0..6)
-        .map(|k| image(n, n, |x, y| [(x as f32 + 0.5) / n as f32, (y as f32 + 0.5) / n as f32, k as f32 / 8.0]))
+        .map(|k| {
+            image(n, n, |x, y| {
+                [
+                    (x as f32 + 0.5) / n as f32,
+                    (y as f32 + 0.5) / n as f32,
+                    k as f32 / 8.0,
+                ]
+            })
+        })
         .collect();
     let refs: [&Image; 6] = std::array::from_fn(|k| &faces[k]);
     let path = temp("orient-cube.tx");
@@ -85,22 +118,43 @@ fn cube_lookup_reproduces_the_input_pixels_in_table_9_1_orientation() {
     for k in 0..6 {
         for &(x, y) in &[(5u32, 9u32), (32, 32), (50, 12), (10, 55)] {
             let d = face_pixel_direction(k, x, y, n);
-            let c = cache.environment(path.to_str().unwrap(), 0, 3, point(d), &LookupOptions::default()).unwrap();
-            let want = [(x as f32 + 0.5) / n as f32, (y as f32 + 0.5) / n as f32, k as f32 / 8.0];
+            let c = cache
+                .environment(
+                    path.to_str().unwrap(),
+                    0,
+                    3,
+                    point(d),
+                    &LookupOptions::default(),
+                )
+                .unwrap();
+            let want = [
+                (x as f32 + 0.5) / n as f32,
+                (y as f32 + 0.5) / n as f32,
+                k as f32 / 8.0,
+            ];
             for ch in 0..3 {
-                assert!((c[ch] - want[ch]).abs() < 2e-2, "face {k} pixel ({x},{y}): got {c:?}, want {want:?}");
+                assert!(
+                    (c[ch] - want[ch]).abs() < 2e-2,
+                    "face {k} pixel ({x},{y}): got {c:?}, want {want:?}"
+                );
             }
         }
     }
 }
 
 /// A smooth function of direction rendered into six Table 9.1 faces.
-fn gradient_cube(path: &PathBuf, n: u32) {
+fn gradient_cube(path: &std::path::Path, n: u32) {
     let f = |d: Vec3| {
         let d = d.normalize();
-        [0.5 + 0.4 * d.x, 0.5 + 0.3 * d.y + 0.1 * d.x * d.z, 0.5 + 0.4 * d.z]
+        [
+            0.5 + 0.4 * d.x,
+            0.5 + 0.3 * d.y + 0.1 * d.x * d.z,
+            0.5 + 0.4 * d.z,
+        ]
     };
-    let faces: Vec<Image> = (0..6).map(|k| image(n, n, |x, y| f(face_pixel_direction(k, x, y, n)))).collect();
+    let faces: Vec<Image> = (0..6)
+        .map(|k| image(n, n, |x, y| f(face_pixel_direction(k, x, y, n))))
+        .collect();
     let refs: [&Image; 6] = std::array::from_fn(|k| &faces[k]);
     let opts = MakeOptions {
         format: PixelFormat::Float,
@@ -161,7 +215,10 @@ fn gradient_environment_has_no_seam_across_any_edge_or_corner_at_any_blur() {
                 for b in &values {
                     for c in 0..3 {
                         worst = worst.max((a[c] - b[c]).abs());
-                        assert!((a[c] - b[c]).abs() < 1e-3, "blur {blur} at {p}: {a:?} vs {b:?}");
+                        assert!(
+                            (a[c] - b[c]).abs() < 1e-3,
+                            "blur {blur} at {p}: {a:?} vs {b:?}"
+                        );
                     }
                 }
             }
@@ -176,19 +233,41 @@ fn blurred_environment_lookup_approaches_the_mean_of_the_sphere() {
     let path = temp("gradient-cube-mean.tx");
     gradient_cube(&path, 32);
     let cache = TextureCache::new(1 << 24);
-    let sharp = cache.environment(path.to_str().unwrap(), 0, 3, point(Vec3::X), &LookupOptions::default()).unwrap();
+    let sharp = cache
+        .environment(
+            path.to_str().unwrap(),
+            0,
+            3,
+            point(Vec3::X),
+            &LookupOptions::default(),
+        )
+        .unwrap();
     assert!((sharp[0] - 0.9).abs() < 5e-3, "{sharp:?}");
     let wide = LookupOptions {
         blur: 2.0,
         ..LookupOptions::default()
     };
-    let c = cache.environment(path.to_str().unwrap(), 0, 3, point(Vec3::X), &wide).unwrap();
-    assert!(c[0] < sharp[0] - 0.1, "blur must pull +x toward the mean: {c:?}");
+    let c = cache
+        .environment(path.to_str().unwrap(), 0, 3, point(Vec3::X), &wide)
+        .unwrap();
+    assert!(
+        c[0] < sharp[0] - 0.1,
+        "blur must pull +x toward the mean: {c:?}"
+    );
 }
 
 #[test]
 fn shadow_map_used_as_environment_is_rejected() {
     let cache = TextureCache::new(1 << 20);
-    let err = cache.environment("/nonexistent/env.tx", 0, 3, point(Vec3::X), &LookupOptions::default());
-    assert!(matches!(err, Err(illume_texture::TextureError::Missing { .. })));
+    let err = cache.environment(
+        "/nonexistent/env.tx",
+        0,
+        3,
+        point(Vec3::X),
+        &LookupOptions::default(),
+    );
+    assert!(matches!(
+        err,
+        Err(illume_texture::TextureError::Missing { .. })
+    ));
 }

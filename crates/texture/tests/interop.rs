@@ -4,7 +4,10 @@
 use glam::Vec3;
 use illume_imageio::{DepthMatrices, Image};
 use illume_texture::cubeface::TABLE_9_1;
-use illume_texture::{make_cube_face_environment, make_shadow, make_texture, LookupOptions, MakeOptions, PixelFormat, TextureCache, WrapMode};
+use illume_texture::{
+    make_cube_face_environment, make_shadow, make_texture, LookupOptions, MakeOptions, PixelFormat,
+    TextureCache, WrapMode,
+};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -15,7 +18,12 @@ fn temp(name: &str) -> PathBuf {
 }
 
 fn tool(name: &str) -> bool {
-    let found = Command::new("sh").arg("-c").arg(format!("command -v {name}")).output().map(|o| o.status.success()).unwrap_or(false);
+    let found = Command::new("sh")
+        .arg("-c")
+        .arg(format!("command -v {name}"))
+        .output()
+        .map(|o| o.status.success())
+        .unwrap_or(false);
     if !found {
         eprintln!("SKIPPED: `{name}` is not installed; interop check not run");
     }
@@ -24,7 +32,11 @@ fn tool(name: &str) -> bool {
 
 fn iinfo(path: &Path) -> String {
     let out = Command::new("iinfo").arg("-v").arg(path).output().unwrap();
-    assert!(out.status.success(), "iinfo failed: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "iinfo failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
@@ -54,7 +66,12 @@ fn iinfo_reads_our_texture_and_shadow_attributes() {
         source: "checker.tif".into(),
         ..MakeOptions::default()
     };
-    make_texture(&rgb(256, 128, |x, y| [((x + y) % 2) as f32, 0.5, 0.25]), &tx, &opts).unwrap();
+    make_texture(
+        &rgb(256, 128, |x, y| [((x + y) % 2) as f32, 0.5, 0.25]),
+        &tx,
+        &opts,
+    )
+    .unwrap();
     let text = iinfo(&tx);
     for want in [
         "256 x  128, 3 channel, half openexr",
@@ -112,15 +129,38 @@ fn exrenvmap_latlong_of_our_cube_agrees_with_our_lookups() {
     // Smooth and asymmetric in every axis, so any face flip or rotation shows.
     let f = |d: Vec3| {
         let d = d.normalize();
-        [0.5 + 0.4 * d.x, 0.5 + 0.3 * d.y + 0.1 * d.z, 0.5 + 0.35 * d.z - 0.05 * d.x]
+        [
+            0.5 + 0.4 * d.x,
+            0.5 + 0.3 * d.y + 0.1 * d.z,
+            0.5 + 0.35 * d.z - 0.05 * d.x,
+        ]
     };
-    let faces: Vec<Image> = (0..6).map(|k| rgb(n, n, |x, y| f(face_pixel_direction(k, x, y, n)))).collect();
+    let faces: Vec<Image> = (0..6)
+        .map(|k| rgb(n, n, |x, y| f(face_pixel_direction(k, x, y, n))))
+        .collect();
     let refs: [&Image; 6] = std::array::from_fn(|k| &faces[k]);
     let cube = temp("interop-cube.tx");
-    make_cube_face_environment(refs, &cube, &MakeOptions { format: PixelFormat::Float, ..MakeOptions::default() }).unwrap();
+    make_cube_face_environment(
+        refs,
+        &cube,
+        &MakeOptions {
+            format: PixelFormat::Float,
+            ..MakeOptions::default()
+        },
+    )
+    .unwrap();
     let ll = temp("interop-latlong.exr");
-    let out = Command::new("exrenvmap").args(["-l", "-w", "128"]).arg(&cube).arg(&ll).output().unwrap();
-    assert!(out.status.success(), "exrenvmap failed: {}", String::from_utf8_lossy(&out.stderr));
+    let out = Command::new("exrenvmap")
+        .args(["-l", "-w", "128"])
+        .arg(&cube)
+        .arg(&ll)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "exrenvmap failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // exrenvmap copies our header's chunkCount (a tiled-file count) into its scan-line output,
     // which strict readers reject; when oiiotool is present, re-save through it first.
     let clean = temp("interop-latlong-clean.exr");
@@ -131,7 +171,12 @@ fn exrenvmap_latlong_of_our_cube_agrees_with_our_lookups() {
                 eprintln!("SKIPPED: cannot read exrenvmap output ({e}) and oiiotool is absent");
                 return;
             }
-            let st = Command::new("oiiotool").arg(&ll).args(["-d", "float", "--eraseattrib", "openexr:chunkCount", "-o"]).arg(&clean).status().unwrap();
+            let st = Command::new("oiiotool")
+                .arg(&ll)
+                .args(["-d", "float", "--eraseattrib", "openexr:chunkCount", "-o"])
+                .arg(&clean)
+                .status()
+                .unwrap();
             assert!(st.success());
             illume_imageio::read_image(&clean).unwrap()
         }
@@ -147,7 +192,15 @@ fn exrenvmap_latlong_of_our_cube_agrees_with_our_lookups() {
             let lat = -std::f32::consts::PI * (y as f32 / (h - 1) as f32 - 0.5);
             let lon = -2.0 * std::f32::consts::PI * (x as f32 / (w - 1) as f32 - 0.5);
             let d = Vec3::new(lon.sin() * lat.cos(), lat.sin(), lon.cos() * lat.cos());
-            let ours = cache.environment(cube.to_str().unwrap(), 0, 3, [d; 4], &LookupOptions::default()).unwrap();
+            let ours = cache
+                .environment(
+                    cube.to_str().unwrap(),
+                    0,
+                    3,
+                    [d; 4],
+                    &LookupOptions::default(),
+                )
+                .unwrap();
             let i = (y * w + x) * img.channels.len();
             let theirs = [img.data[i + cr], img.data[i + cg], img.data[i + cb]];
             for c in 0..3 {
@@ -156,5 +209,8 @@ fn exrenvmap_latlong_of_our_cube_agrees_with_our_lookups() {
         }
     }
     eprintln!("largest |ours - exrenvmap| = {worst:e}");
-    assert!(worst <= 1.0 / 255.0, "largest difference {worst} exceeds 1/255");
+    assert!(
+        worst <= 1.0 / 255.0,
+        "largest difference {worst} exceeds 1/255"
+    );
 }

@@ -71,9 +71,17 @@ fn plane_with_equal_depths_and_bias_is_fully_lit() {
     let inside = LookupOptions { bias: -0.01, ..lit };
     for &(sx, sy) in &[(0.0, 0.0), (0.5, -0.3), (-0.8, 0.8), (0.21, 0.33)] {
         let p = on_screen(sx, sy, 5.0);
-        assert_eq!(cache.shadow(name, [p; 4], &lit).unwrap(), 0.0, "({sx},{sy})");
+        assert_eq!(
+            cache.shadow(name, [p; 4], &lit).unwrap(),
+            0.0,
+            "({sx},{sy})"
+        );
         // Pushed behind its own depth it is fully shadowed: the comparison is live.
-        assert_eq!(cache.shadow(name, [p; 4], &inside).unwrap(), 1.0, "({sx},{sy})");
+        assert_eq!(
+            cache.shadow(name, [p; 4], &inside).unwrap(),
+            1.0,
+            "({sx},{sy})"
+        );
     }
 }
 
@@ -89,17 +97,45 @@ fn tilted_plane_needs_bias_to_escape_self_shadowing() {
         let sx = ((k * 37) % count) as f32 / count as f32 * 1.6 - 0.8;
         let sy = ((k * 91) % count) as f32 / count as f32 * 1.6 - 0.8;
         let p = on_screen(sx, sy, 5.0 / (1.0 - 0.05 * sx));
-        with_bias += cache.shadow(name, [p; 4], &LookupOptions { bias: 0.01, ..LookupOptions::default() }).unwrap();
-        without += cache.shadow(name, [p; 4], &LookupOptions { bias: 0.0, ..LookupOptions::default() }).unwrap();
+        with_bias += cache
+            .shadow(
+                name,
+                [p; 4],
+                &LookupOptions {
+                    bias: 0.01,
+                    ..LookupOptions::default()
+                },
+            )
+            .unwrap();
+        without += cache
+            .shadow(
+                name,
+                [p; 4],
+                &LookupOptions {
+                    bias: 0.0,
+                    ..LookupOptions::default()
+                },
+            )
+            .unwrap();
     }
     assert_eq!(with_bias, 0.0);
-    assert!(without / count as f32 > 0.2, "unbiased self-shadowing expected, got {}", without / count as f32);
+    assert!(
+        without / count as f32 > 0.2,
+        "unbiased self-shadowing expected, got {}",
+        without / count as f32
+    );
 }
 
 #[test]
 fn occluder_shadow_matches_the_covered_fraction_of_the_footprint() {
     // Occluder square at depth 2 covering screen |x|,|y| < 0.2, floor at depth 8 elsewhere.
-    let sm = shadow_map("occluder", 128, |sx, sy| if sx.abs() < 0.2 && sy.abs() < 0.2 { 2.0 } else { 8.0 });
+    let sm = shadow_map("occluder", 128, |sx, sy| {
+        if sx.abs() < 0.2 && sy.abs() < 0.2 {
+            2.0
+        } else {
+            8.0
+        }
+    });
     let cache = TextureCache::new(1 << 24);
     let name = sm.to_str().unwrap();
     let floor = |sx: f32, sy: f32| on_screen(sx, sy, 8.0);
@@ -107,8 +143,14 @@ fn occluder_shadow_matches_the_covered_fraction_of_the_footprint() {
         bias: 0.05,
         ..LookupOptions::default()
     };
-    assert_eq!(cache.shadow(name, [floor(0.0, 0.0); 4], &opts).unwrap(), 1.0);
-    assert_eq!(cache.shadow(name, [floor(0.6, 0.1); 4], &opts).unwrap(), 0.0);
+    assert_eq!(
+        cache.shadow(name, [floor(0.0, 0.0); 4], &opts).unwrap(),
+        1.0
+    );
+    assert_eq!(
+        cache.shadow(name, [floor(0.6, 0.1); 4], &opts).unwrap(),
+        0.0
+    );
     // Blurred lookups across the occluder's right edge (screen x = 0.2 → NDC s = 0.6):
     // the footprint is an NDC box of width `blur`; the covered fraction is its part left of 0.6.
     let blur = 0.1f32;
@@ -122,7 +164,10 @@ fn occluder_shadow_matches_the_covered_fraction_of_the_footprint() {
         let got = cache.shadow(name, [floor(sx, 0.0); 4], &wide).unwrap();
         // Occluder in NDC: s in (0.4, 0.6); texel-quantised edge at 0.6 exactly (128 texels).
         let covered = ((0.6 - (s_centre - blur / 2.0)) / blur).clamp(0.0, 1.0);
-        assert!((got - covered).abs() < 0.07, "s={s_centre}: got {got}, covered fraction {covered}");
+        assert!(
+            (got - covered).abs() < 0.07,
+            "s={s_centre}: got {got}, covered fraction {covered}"
+        );
     }
     // Deterministic: the same lookup twice gives the same bits.
     let a = cache.shadow(name, [floor(0.2, 0.05); 4], &wide).unwrap();
@@ -141,6 +186,13 @@ fn shadow_lookup_on_a_plain_texture_is_a_kind_error() {
     let path = temp("not-a-shadow.tx");
     illume_texture::make_texture(&img, &path, &MakeOptions::default()).unwrap();
     let cache = TextureCache::new(1 << 20);
-    let r = cache.shadow(path.to_str().unwrap(), [Vec3::Z; 4], &LookupOptions::default());
-    assert!(matches!(r, Err(illume_texture::TextureError::WrongKind { .. })), "{r:?}");
+    let r = cache.shadow(
+        path.to_str().unwrap(),
+        [Vec3::Z; 4],
+        &LookupOptions::default(),
+    );
+    assert!(
+        matches!(r, Err(illume_texture::TextureError::WrongKind { .. })),
+        "{r:?}"
+    );
 }

@@ -1,7 +1,10 @@
 //! Plain textures: mip level selection, filtering, wrap modes, laziness of the tile cache.
 
 use illume_imageio::Image;
-use illume_texture::{make_texture, FilterKind, LookupOptions, MakeOptions, PixelFormat, Resize, TextureCache, TextureError, WrapMode};
+use illume_texture::{
+    make_texture, FilterKind, LookupOptions, MakeOptions, PixelFormat, Resize, TextureCache,
+    TextureError, WrapMode,
+};
 use std::path::PathBuf;
 
 fn temp(name: &str) -> PathBuf {
@@ -55,15 +58,29 @@ fn checkerboard_minified_by_powers_of_two_averages_to_grey() {
         let w = (1u32 << k) as f32 / n as f32;
         for &(s, t) in &[(0.5, 0.5), (0.123, 0.77), (0.9, 0.31)] {
             for angle in [0.0f32, 0.4] {
-                let c = cache.texture(name, 0, 1, square(s, t, w, angle), &LookupOptions::default()).unwrap();
-                assert!((c[0] - 0.5).abs() <= 1.0 / 255.0, "k={k} at ({s},{t}) angle {angle}: {}", c[0]);
+                let c = cache
+                    .texture(
+                        name,
+                        0,
+                        1,
+                        square(s, t, w, angle),
+                        &LookupOptions::default(),
+                    )
+                    .unwrap();
+                assert!(
+                    (c[0] - 0.5).abs() <= 1.0 / 255.0,
+                    "k={k} at ({s},{t}) angle {angle}: {}",
+                    c[0]
+                );
             }
         }
     }
     // Unfiltered (zero-area) lookup at a texel centre returns that texel exactly.
     let s = (10.0 + 0.5) / n as f32;
     let t = (3.0 + 0.5) / n as f32;
-    let c = cache.texture(name, 0, 1, [[s, t]; 4], &LookupOptions::default()).unwrap();
+    let c = cache
+        .texture(name, 0, 1, [[s, t]; 4], &LookupOptions::default())
+        .unwrap();
     assert_eq!(c[0], 1.0);
 }
 
@@ -82,18 +99,34 @@ fn zero_and_huge_derivatives_select_finest_and_coarsest_levels() {
     let name = path.to_str().unwrap();
     // Bilinear between texel centres: s half-way between texels 20 and 21.
     let s = 21.0 / n as f32;
-    let c = cache.texture(name, 0, 3, [[s, 0.5]; 4], &LookupOptions::default()).unwrap();
+    let c = cache
+        .texture(name, 0, 3, [[s, 0.5]; 4], &LookupOptions::default())
+        .unwrap();
     assert!((c[0] - 20.5 / 63.0).abs() < 1e-5, "{c:?}");
     assert!((c[1] - 0.5 * 20.5 / 63.0).abs() < 1e-5);
     // A footprint far larger than the texture gives the mean (0.5) however many probes.
     let huge = square(0.5, 0.5, 40.0, 0.3);
-    let c = cache.texture(name, 0, 1, huge, &LookupOptions::default()).unwrap();
+    let c = cache
+        .texture(name, 0, 1, huge, &LookupOptions::default())
+        .unwrap();
     assert!((c[0] - 0.5).abs() < 0.02, "{c:?}");
     // Missing channel → fill.
     let c = cache
-        .texture(name, 2, 2, [[s, 0.5]; 4], &LookupOptions { fill: 0.75, ..LookupOptions::default() })
+        .texture(
+            name,
+            2,
+            2,
+            [[s, 0.5]; 4],
+            &LookupOptions {
+                fill: 0.75,
+                ..LookupOptions::default()
+            },
+        )
         .unwrap();
-    assert!((c[0] - (1.0 - 20.5 / 63.0)).abs() < 1e-5 && c[1] == 0.75, "{c:?}");
+    assert!(
+        (c[0] - (1.0 - 20.5 / 63.0)).abs() < 1e-5 && c[1] == 0.75,
+        "{c:?}"
+    );
 }
 
 #[test]
@@ -103,16 +136,34 @@ fn anisotropic_footprint_blurs_only_along_its_long_axis() {
     let n = 128;
     let img = grey_image(n, n, |x, _| (x % 2) as f32);
     let path = temp("stripes.tx");
-    make_texture(&img, &path, &MakeOptions { format: PixelFormat::Float, ..MakeOptions::default() }).unwrap();
+    make_texture(
+        &img,
+        &path,
+        &MakeOptions {
+            format: PixelFormat::Float,
+            ..MakeOptions::default()
+        },
+    )
+    .unwrap();
     let cache = TextureCache::new(1 << 24);
     let name = path.to_str().unwrap();
     let s = (41.0 + 0.5) / n as f32;
     let tall = [[s, 0.45], [s, 0.45], [s, 0.55], [s, 0.55]];
-    let c = cache.texture(name, 0, 1, tall, &LookupOptions::default()).unwrap();
-    assert!((c[0] - 1.0).abs() < 0.05, "long in t must keep the stripe: {c:?}");
+    let c = cache
+        .texture(name, 0, 1, tall, &LookupOptions::default())
+        .unwrap();
+    assert!(
+        (c[0] - 1.0).abs() < 0.05,
+        "long in t must keep the stripe: {c:?}"
+    );
     let wide = [[0.4, 0.5], [0.6, 0.5], [0.4, 0.5], [0.6, 0.5]];
-    let c = cache.texture(name, 0, 1, wide, &LookupOptions::default()).unwrap();
-    assert!((c[0] - 0.5).abs() < 0.02, "long in s must average the stripes: {c:?}");
+    let c = cache
+        .texture(name, 0, 1, wide, &LookupOptions::default())
+        .unwrap();
+    assert!(
+        (c[0] - 0.5).abs() < 0.02,
+        "long in s must average the stripes: {c:?}"
+    );
 }
 
 #[test]
@@ -121,11 +172,29 @@ fn wrap_modes_from_the_file_are_honoured() {
     let img = grey_image(n, n, |x, _| if x < n / 2 { 0.25 } else { 0.75 });
     let name_of = |wrap: [WrapMode; 2], tag: &str| {
         let path = temp(&format!("wrap-{tag}.tx"));
-        make_texture(&img, &path, &MakeOptions { wrap, ..MakeOptions::default() }).unwrap();
+        make_texture(
+            &img,
+            &path,
+            &MakeOptions {
+                wrap,
+                ..MakeOptions::default()
+            },
+        )
+        .unwrap();
         path
     };
     let cache = TextureCache::new(1 << 24);
-    let at = |p: &PathBuf, s: f32| cache.texture(p.to_str().unwrap(), 0, 1, [[s, 0.5]; 4], &LookupOptions::default()).unwrap()[0];
+    let at = |p: &PathBuf, s: f32| {
+        cache
+            .texture(
+                p.to_str().unwrap(),
+                0,
+                1,
+                [[s, 0.5]; 4],
+                &LookupOptions::default(),
+            )
+            .unwrap()[0]
+    };
     let periodic = name_of([WrapMode::Periodic; 2], "periodic");
     let clamp = name_of([WrapMode::Clamp; 2], "clamp");
     let black = name_of([WrapMode::Black; 2], "black");
@@ -133,7 +202,10 @@ fn wrap_modes_from_the_file_are_honoured() {
     assert_eq!(at(&periodic, 1.25), 0.25);
     assert_eq!(at(&clamp, 1.5), 0.75);
     assert_eq!(at(&black, 1.5), 0.0);
-    assert_eq!(cache.info(periodic.to_str().unwrap()).unwrap().wrap, [WrapMode::Periodic; 2]);
+    assert_eq!(
+        cache.info(periodic.to_str().unwrap()).unwrap().wrap,
+        [WrapMode::Periodic; 2]
+    );
 }
 
 #[test]
@@ -141,13 +213,25 @@ fn lookups_read_only_the_tiles_they_touch_and_the_memory_bound_holds() {
     let n = 512; // 8×8 tiles at level 0
     let img = grey_image(n, n, |x, y| ((x / 7 + y / 5) % 3) as f32 / 2.0);
     let path = temp("lazy.tx");
-    make_texture(&img, &path, &MakeOptions { filter: FilterKind::Gaussian, ..MakeOptions::default() }).unwrap();
+    make_texture(
+        &img,
+        &path,
+        &MakeOptions {
+            filter: FilterKind::Gaussian,
+            ..MakeOptions::default()
+        },
+    )
+    .unwrap();
     let cache = TextureCache::new(1 << 26);
     let name = path.to_str().unwrap();
-    cache.texture(name, 0, 3, [[0.01, 0.01]; 4], &LookupOptions::default()).unwrap();
+    cache
+        .texture(name, 0, 3, [[0.01, 0.01]; 4], &LookupOptions::default())
+        .unwrap();
     let st = cache.stats();
     assert_eq!(st.tiles_read, 1, "{st:?}");
-    cache.texture(name, 0, 3, [[0.02, 0.015]; 4], &LookupOptions::default()).unwrap();
+    cache
+        .texture(name, 0, 3, [[0.02, 0.015]; 4], &LookupOptions::default())
+        .unwrap();
     let st = cache.stats();
     assert_eq!((st.tiles_read, st.tile_hits), (1, 1), "{st:?}");
     assert!(st.hit_rate() > 0.49);
@@ -156,12 +240,26 @@ fn lookups_read_only_the_tiles_they_touch_and_the_memory_bound_holds() {
     for i in 0..64 {
         let s = (i as f32 + 0.5) / 64.0;
         for j in 0..8 {
-            small.texture(name, 0, 3, [[s, (j as f32 + 0.5) / 8.0]; 4], &LookupOptions::default()).unwrap();
+            small
+                .texture(
+                    name,
+                    0,
+                    3,
+                    [[s, (j as f32 + 0.5) / 8.0]; 4],
+                    &LookupOptions::default(),
+                )
+                .unwrap();
         }
     }
     let st = small.stats();
-    assert!(st.evictions > 0 && st.bytes_resident <= 16 * 2 * 64 * 64 * 3 * 4 + 64 * 64 * 12, "{st:?}");
-    assert!(st.tiles_read >= 64, "every level-0 tile is touched once: {st:?}");
+    assert!(
+        st.evictions > 0 && st.bytes_resident <= 16 * 2 * 64 * 64 * 3 * 4 + 64 * 64 * 12,
+        "{st:?}"
+    );
+    assert!(
+        st.tiles_read >= 64,
+        "every level-0 tile is touched once: {st:?}"
+    );
 }
 
 #[test]
@@ -169,7 +267,15 @@ fn non_power_of_two_resize_none_keeps_the_size_and_resize_up_rounds() {
     let img = grey_image(100, 37, |x, y| ((x * y) % 7) as f32 / 7.0);
     let cache = TextureCache::new(1 << 24);
     let a = temp("npot-none.tx");
-    make_texture(&img, &a, &MakeOptions { resize: Resize::None, ..MakeOptions::default() }).unwrap();
+    make_texture(
+        &img,
+        &a,
+        &MakeOptions {
+            resize: Resize::None,
+            ..MakeOptions::default()
+        },
+    )
+    .unwrap();
     let info = cache.info(a.to_str().unwrap()).unwrap();
     assert_eq!((info.width, info.height, info.levels), (100, 37, 7));
     let b = temp("npot-up.tx");
@@ -184,7 +290,13 @@ fn non_power_of_two_resize_none_keeps_the_size_and_resize_up_rounds() {
 fn missing_texture_is_an_error_value_remembered_by_the_cache() {
     let cache = TextureCache::new(1 << 20);
     for _ in 0..3 {
-        let r = cache.texture("/no/such/texture.tx", 0, 3, [[0.5, 0.5]; 4], &LookupOptions::default());
+        let r = cache.texture(
+            "/no/such/texture.tx",
+            0,
+            3,
+            [[0.5, 0.5]; 4],
+            &LookupOptions::default(),
+        );
         assert!(matches!(r, Err(TextureError::Missing { .. })), "{r:?}");
     }
     assert_eq!(cache.stats().files_opened, 0);
@@ -198,7 +310,12 @@ fn plain_image_used_directly_is_mip_mapped_in_memory() {
         &path,
         "png",
         &img,
-        illume_imageio::Quantize { one: 255, min: 0, max: 255, dither: 0.0 },
+        illume_imageio::Quantize {
+            one: 255,
+            min: 0,
+            max: 255,
+            dither: 0.0,
+        },
         None,
     )
     .unwrap();
@@ -208,6 +325,14 @@ fn plain_image_used_directly_is_mip_mapped_in_memory() {
     assert!(!info.tiled);
     assert_eq!(info.levels, 6);
     // 8-texel blocks: level 3 texels are exact 2-colour averages (0.5).
-    let c = cache.texture(name, 0, 1, square(0.5, 0.5, 8.0 / 32.0, 0.0), &LookupOptions::default()).unwrap();
+    let c = cache
+        .texture(
+            name,
+            0,
+            1,
+            square(0.5, 0.5, 8.0 / 32.0, 0.0),
+            &LookupOptions::default(),
+        )
+        .unwrap();
     assert!((c[0] - 0.5).abs() < 1.0 / 255.0, "{c:?}");
 }
