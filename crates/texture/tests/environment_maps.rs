@@ -257,7 +257,7 @@ fn blurred_environment_lookup_approaches_the_mean_of_the_sphere() {
 }
 
 #[test]
-fn shadow_map_used_as_environment_is_rejected() {
+fn missing_environment_is_a_missing_error() {
     let cache = TextureCache::new(1 << 20);
     let err = cache.environment(
         "/nonexistent/env.tx",
@@ -270,4 +270,104 @@ fn shadow_map_used_as_environment_is_rejected() {
         err,
         Err(illume_texture::TextureError::Missing { .. })
     ));
+}
+
+#[test]
+fn faces_wider_than_90_degrees_use_their_margin_and_keep_orientation() {
+    // Faces rendered with a 100° camera: pixel (x,y) looks along view + tan(50°)(sx·right + sy·up).
+    let n = 48;
+    let fov = 100.0f32;
+    let k_tan = (0.5 * fov.to_radians()).tan();
+    let f = |d: Vec3| {
+        let d = d.normalize();
+        [0.5 + 0.4 * d.x, 0.5 + 0.4 * d.y, 0.5 + 0.4 * d.z]
+    };
+    let faces: Vec<Image> = (0..6)
+        .map(|k| {
+            image(n, n, |x, y| {
+                let (view, up, right) = TABLE_9_1[k];
+                let sx = ((x as f32 + 0.5) / n as f32 * 2.0 - 1.0) * k_tan;
+                let sy = (1.0 - (y as f32 + 0.5) / n as f32 * 2.0) * k_tan;
+                f(view + right * sx + up * sy)
+            })
+        })
+        .collect();
+    let refs: [&Image; 6] = std::array::from_fn(|k| &faces[k]);
+    let path = temp("wide-cube.tx");
+    let opts = MakeOptions {
+        format: PixelFormat::Float,
+        fov,
+        ..MakeOptions::default()
+    };
+    make_cube_face_environment(refs, &path, &opts).unwrap();
+    let cache = TextureCache::new(1 << 24);
+    for d in [
+        Vec3::X,
+        Vec3::new(1.0, 0.99, -0.98),
+        Vec3::new(-0.3, 1.0, 0.999),
+        Vec3::new(0.2, -0.7, -1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+    ] {
+        let c = cache
+            .environment(
+                path.to_str().unwrap(),
+                0,
+                3,
+                point(d),
+                &LookupOptions::default(),
+            )
+            .unwrap();
+        let want = f(d);
+        for ch in 0..3 {
+            assert!(
+                (c[ch] - want[ch]).abs() < 3e-3,
+                "{d}: got {c:?}, want {want:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn latlong_environment_returns_the_pixel_of_each_direction() {
+    use illume_texture::{latlong_direction, make_latlong_environment};
+    let (w, h) = (128u32, 64u32);
+    let f = |d: Vec3| [0.5 + 0.4 * d.x, 0.5 + 0.4 * d.y, 0.5 + 0.4 * d.z];
+    let img = image(w, h, |x, y| {
+        f(latlong_direction(
+            (x as f32 + 0.5) / w as f32,
+            (y as f32 + 0.5) / h as f32,
+        ))
+    });
+    let path = temp("latlong.tx");
+    let opts = MakeOptions {
+        format: PixelFormat::Float,
+        ..MakeOptions::default()
+    };
+    make_latlong_environment(&img, &path, &opts).unwrap();
+    let cache = TextureCache::new(1 << 24);
+    let info = cache.info(path.to_str().unwrap()).unwrap();
+    assert_eq!(info.kind, illume_texture::TextureKind::LatLong);
+    for d in [
+        Vec3::X,
+        Vec3::new(0.3, -0.8, 0.2),
+        Vec3::new(-1.0, 0.01, -0.5),
+        Vec3::new(0.1, 0.2, 0.9),
+    ] {
+        let c = cache
+            .environment(
+                path.to_str().unwrap(),
+                0,
+                3,
+                point(d),
+                &LookupOptions::default(),
+            )
+            .unwrap();
+        let want = f(d.normalize());
+        for ch in 0..3 {
+            assert!(
+                (c[ch] - want[ch]).abs() < 0.01,
+                "{d}: got {c:?}, want {want:?}"
+            );
+        }
+    }
 }
