@@ -336,3 +336,39 @@ fn plain_image_used_directly_is_mip_mapped_in_memory() {
         .unwrap();
     assert!((c[0] - 0.5).abs() < 1.0 / 255.0, "{c:?}");
 }
+
+#[test]
+fn one_cache_shared_by_threads_gives_the_same_bits_as_one_thread() {
+    fn shareable<T: Send + Sync>(_: &T) {}
+    let img = grey_image(300, 200, |x, y| ((x * 13 + y * 7) % 17) as f32 / 16.0);
+    let path = temp("threads.tx");
+    make_texture(&img, &path, &MakeOptions::default()).unwrap();
+    let name = path.to_str().unwrap();
+    let queries: Vec<[[f32; 2]; 4]> = (0..2000)
+        .map(|i| {
+            let s = ((i * 7919) % 1009) as f32 / 1009.0;
+            let t = ((i * 104729) % 1013) as f32 / 1013.0;
+            let w = ((i % 9) as f32 + 0.5) / 300.0;
+            square(s, t, w, i as f32 * 0.1)
+        })
+        .collect();
+    let opts = LookupOptions {
+        blur: 0.003,
+        ..LookupOptions::default()
+    };
+    let serial_cache = TextureCache::new(1 << 24);
+    let serial: Vec<[f32; 4]> = queries
+        .iter()
+        .map(|q| serial_cache.texture(name, 0, 3, *q, &opts).unwrap())
+        .collect();
+    let shared = TextureCache::new(64 * 1024); // tiny: threads also race on eviction
+    shareable(&shared);
+    use rayon::prelude::*;
+    let parallel: Vec<[f32; 4]> = queries
+        .par_iter()
+        .map(|q| shared.texture(name, 0, 3, *q, &opts).unwrap())
+        .collect();
+    for (a, b) in serial.iter().zip(&parallel) {
+        assert_eq!(a.map(f32::to_bits), b.map(f32::to_bits));
+    }
+}
