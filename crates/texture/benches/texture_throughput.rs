@@ -80,25 +80,26 @@ fn main() {
             ..LookupOptions::default()
         };
         for pass in ["cold", "warm"] {
-        let t = Instant::now();
-        let mut sum = 0.0f32;
-        for i in 0..n {
-            let s = ((i * 7919) % 10007) as f32 / 10007.0;
-            let tt = ((i * 104729) % 10009) as f32 / 10009.0;
-            let st = [
-                [s, tt],
-                [s + width, tt],
-                [s, tt + width],
-                [s + width, tt + width],
-            ];
-            sum += cache.texture(name, 0, 3, st, &o).unwrap()[0];
-        }
-        let secs = t.elapsed().as_secs_f64();
-        println!(
-            "texture blur {blur} footprint {:.0} texels: {:.2} M lookups/s (checksum {sum:.1})",
+            let t = Instant::now();
+            let mut sum = 0.0f32;
+            for i in 0..n {
+                let s = ((i * 7919) % 10007) as f32 / 10007.0;
+                let tt = ((i * 104729) % 10009) as f32 / 10009.0;
+                let st = [
+                    [s, tt],
+                    [s + width, tt],
+                    [s, tt + width],
+                    [s + width, tt + width],
+                ];
+                sum += cache.texture(name, 0, 3, st, &o).unwrap()[0];
+            }
+            let secs = t.elapsed().as_secs_f64();
+            println!(
+            "texture ({pass}) blur {blur} footprint {:.0} texels: {:.2} M lookups/s (checksum {sum:.1})",
             width * 4096.0,
             n as f64 / secs / 1e6
         );
+        }
     }
     let cname = cube.to_str().unwrap();
     for blur in [0.0f32, 0.01, 0.1] {
@@ -107,24 +108,25 @@ fn main() {
             ..LookupOptions::default()
         };
         for pass in ["cold", "warm"] {
-        let t = Instant::now();
-        let mut sum = 0.0f32;
-        let n = 100_000;
-        for i in 0..n {
-            let a = i as f32 * 0.61803;
-            let b = (i as f32 * 0.41421).sin();
-            let d = Vec3::new(
-                a.cos() * (1.0 - b * b).sqrt(),
-                b,
-                a.sin() * (1.0 - b * b).sqrt(),
+            let t = Instant::now();
+            let mut sum = 0.0f32;
+            let n = 100_000;
+            for i in 0..n {
+                let a = i as f32 * 0.61803;
+                let b = (i as f32 * 0.41421).sin();
+                let d = Vec3::new(
+                    a.cos() * (1.0 - b * b).sqrt(),
+                    b,
+                    a.sin() * (1.0 - b * b).sqrt(),
+                );
+                sum += cache.environment(cname, 0, 3, [d; 4], &o).unwrap()[0];
+            }
+            let secs = t.elapsed().as_secs_f64();
+            println!(
+                "environment ({pass}) blur {blur}: {:.2} M lookups/s (checksum {sum:.1})",
+                n as f64 / secs / 1e6
             );
-            sum += cache.environment(cname, 0, 3, [d; 4], &o).unwrap()[0];
         }
-        let secs = t.elapsed().as_secs_f64();
-        println!(
-            "environment blur {blur}: {:.2} M lookups/s (checksum {sum:.1})",
-            n as f64 / secs / 1e6
-        );
     }
     let st = cache.stats();
     println!(
