@@ -276,7 +276,14 @@ impl TextureCache {
                 tx.matrix(n)
                     .map(|a| DMat4::from_cols_array(&a.map(|v| v as f64)))
             };
-            let (wtc, wtn) = (m("worldToCamera"), m("worldToNDC"));
+            // OpenImageIO's `maketx --shadow` records the screen matrix as `worldToScreen`.
+            let wtn = m("worldToNDC").or_else(|| {
+                tx.matrix("worldToScreen").map(|a| {
+                    let ndc = crate::build::screen_to_ndc(&a);
+                    DMat4::from_cols_array(&ndc.map(|v| v as f64))
+                })
+            });
+            let wtc = m("worldToCamera");
             if kind == TextureKind::Cube {
                 let (w, h) = tx.levels[0];
                 if h != 6 * w || !w.is_power_of_two() {

@@ -214,3 +214,86 @@ fn exrenvmap_latlong_of_our_cube_agrees_with_our_lookups() {
         "largest difference {worst} exceeds 1/255"
     );
 }
+
+#[test]
+fn maketx_shadow_of_our_zfile_gives_the_same_shadows_as_our_shadow_map() {
+    if !tool("maketx") {
+        return;
+    }
+    // Light at the origin looking down +z, 90° frustum; an occluder square in front of a floor.
+    let n = 64u32;
+    let screen = [
+        1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, -1.0, 0.0,
+    ];
+    let mut identity = [0.0f32; 16];
+    for i in 0..4 {
+        identity[i * 5] = 1.0;
+    }
+    let matrices = DepthMatrices {
+        world_to_screen: screen,
+        world_to_camera: identity,
+    };
+    let data = (0..n * n)
+        .map(|i| {
+            let sx = ((i % n) as f32 + 0.5) / n as f32 * 2.0 - 1.0;
+            let sy = 1.0 - ((i / n) as f32 + 0.5) / n as f32 * 2.0;
+            if sx.abs() < 0.3 && sy.abs() < 0.3 {
+                2.0
+            } else {
+                8.0
+            }
+        })
+        .collect();
+    let depth = Image {
+        width: n,
+        height: n,
+        channels: vec!["z".into()],
+        data,
+    };
+    let z = temp("maketx.z");
+    illume_imageio::write_zfile(&z, &depth, &matrices).unwrap();
+    let theirs = temp("maketx-shadow.exr");
+    let out = Command::new("maketx")
+        .arg("--shadow")
+        .arg(&z)
+        .arg("-o")
+        .arg(&theirs)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "maketx --shadow failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (img, m) = illume_imageio::read_zfile(&z).unwrap();
+    let ours = temp("ours-shadow.sm");
+    make_shadow(&img, &m, &ours, &MakeOptions::default()).unwrap();
+    let cache = TextureCache::new(1 << 24);
+    let opts = LookupOptions {
+        bias: 0.05,
+        blur: 0.05,
+        samples: 64,
+        ..LookupOptions::default()
+    };
+    for &(sx, sy) in &[
+        (0.0f32, 0.0f32),
+        (0.5, 0.5),
+        (0.3, 0.0),
+        (-0.31, 0.2),
+        (0.9, -0.9),
+    ] {
+        let p = Vec3::new(sx * 8.0, sy * 8.0, 8.0);
+        let a = cache.shadow(ours.to_str().unwrap(), [p; 4], &opts).unwrap();
+        let b = cache
+            .shadow(theirs.to_str().unwrap(), [p; 4], &opts)
+            .unwrap();
+        assert!((a - b).abs() < 1e-6, "({sx},{sy}): ours {a}, maketx {b}");
+    }
+    let centre = Vec3::new(0.0, 0.0, 8.0);
+    assert_eq!(
+        cache
+            .shadow(theirs.to_str().unwrap(), [centre; 4], &opts)
+            .unwrap(),
+        1.0
+    );
+}
