@@ -297,3 +297,95 @@ fn maketx_shadow_of_our_zfile_gives_the_same_shadows_as_our_shadow_map() {
         1.0
     );
 }
+
+#[test]
+fn textures_made_by_maketx_are_read() {
+    if !tool("maketx") {
+        return;
+    }
+    // 4×4-texel checker, 64×32: a tiled EXR and a tiled TIFF from maketx, and our own .tx.
+    let img = rgb(64, 32, |x, y| {
+        if (x / 4 + y / 4) % 2 == 0 {
+            [1.0, 0.5, 0.0]
+        } else {
+            [0.0, 0.25, 1.0]
+        }
+    });
+    let src = temp("maketx-src.exr");
+    illume_imageio::write_display(
+        &src,
+        "exr",
+        &img,
+        illume_imageio::Quantize {
+            one: 0,
+            min: 0,
+            max: 0,
+            dither: 0.0,
+        },
+        None,
+    )
+    .unwrap();
+    let ours = temp("maketx-ours.tx");
+    make_texture(&img, &ours, &MakeOptions::default()).unwrap();
+    let cache = TextureCache::new(1 << 24);
+    for ext in ["exr", "tx"] {
+        let theirs = temp(&format!("maketx-out.{ext}"));
+        let out = Command::new("maketx")
+            .arg(&src)
+            .arg("-o")
+            .arg(&theirs)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "maketx failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        for &(s, t) in &[(0.03f32, 0.05f32), (0.5, 0.5), (0.77, 0.9)] {
+            let a = cache
+                .texture(
+                    ours.to_str().unwrap(),
+                    0,
+                    3,
+                    [[s, t]; 4],
+                    &LookupOptions::default(),
+                )
+                .unwrap();
+            let b = cache
+                .texture(
+                    theirs.to_str().unwrap(),
+                    0,
+                    3,
+                    [[s, t]; 4],
+                    &LookupOptions::default(),
+                )
+                .unwrap();
+            for c in 0..3 {
+                assert!(
+                    (a[c] - b[c]).abs() < 1.0 / 255.0,
+                    "{ext} at ({s},{t}): ours {a:?}, maketx {b:?}"
+                );
+            }
+        }
+        // Minified to one texel per checker period: both pyramids hold the average.
+        let wide = [
+            [0.4, 0.4],
+            [0.4 + 8.0 / 64.0, 0.4],
+            [0.4, 0.4 + 8.0 / 32.0],
+            [0.4 + 8.0 / 64.0, 0.4 + 8.0 / 32.0],
+        ];
+        let b = cache
+            .texture(
+                theirs.to_str().unwrap(),
+                0,
+                3,
+                wide,
+                &LookupOptions::default(),
+            )
+            .unwrap();
+        assert!(
+            (b[0] - 0.5).abs() < 0.03 && (b[2] - 0.5).abs() < 0.03,
+            "{ext}: {b:?}"
+        );
+    }
+}
