@@ -372,3 +372,114 @@ fn one_cache_shared_by_threads_gives_the_same_bits_as_one_thread() {
         assert_eq!(a.map(f32::to_bits), b.map(f32::to_bits));
     }
 }
+
+mod arbitrary_inputs {
+    use super::*;
+    use proptest::prelude::*;
+    use std::sync::OnceLock;
+
+    fn texture_path() -> &'static PathBuf {
+        static PATH: OnceLock<PathBuf> = OnceLock::new();
+        PATH.get_or_init(|| {
+            let img = grey_image(40, 24, |x, y| ((x ^ y) % 5) as f32 / 4.0);
+            let path = temp("arbitrary.tx");
+            make_texture(
+                &img,
+                &path,
+                &MakeOptions {
+                    resize: Resize::None,
+                    ..MakeOptions::default()
+                },
+            )
+            .unwrap();
+            path
+        })
+    }
+
+    fn any_f32() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            -4.0f32..4.0,
+            Just(f32::NAN),
+            Just(f32::INFINITY),
+            Just(f32::NEG_INFINITY),
+            Just(1e30f32),
+            Just(-1e-30f32),
+            Just(0.0f32),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        #[test]
+        fn any_footprint_and_options_give_a_value_without_panicking(
+            c in proptest::array::uniform8(any_f32()),
+            blur in any_f32(),
+            width in any_f32(),
+            first in 0usize..6,
+        ) {
+            let cache = TextureCache::new(1 << 20);
+            let st = [[c[0], c[1]], [c[2], c[3]], [c[4], c[5]], [c[6], c[7]]];
+            let opts = LookupOptions { blur, swidth: width, twidth: width, ..LookupOptions::default() };
+            let v = cache.texture(texture_path().to_str().unwrap(), first, 4, st, &opts);
+            prop_assert!(v.is_ok());
+            let d = [glam::Vec3::new(c[0], c[1], c[2]), glam::Vec3::new(c[3], c[4], c[5]), glam::Vec3::new(c[6], c[7], c[0]), glam::Vec3::new(c[1], c[2], c[3])];
+            prop_assert!(cache.environment(texture_path().to_str().unwrap(), first, 3, d, &opts).is_ok());
+        }
+    }
+}
+
+#[test]
+fn truncated_or_garbage_texture_files_are_errors_not_panics() {
+    let img = grey_image(256, 256, |x, y| ((x * 3 + y) % 11) as f32 / 10.0);
+    let path = temp("truncate-me.tx");
+    make_texture(&img, &path, &MakeOptions::default()).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let cache = TextureCache::new(1 << 24);
+    for (k, cut) in [bytes.len() / 2, bytes.len() - 10, 400, 40, 8]
+        .into_iter()
+        .enumerate()
+    {
+        let p = temp(&format!("truncated-{k}.tx"));
+        std::fs::write(&p, &bytes[..cut]).unwrap();
+        // Point lookups everywhere touch every level-0 tile; a huge one touches the 1×1 level.
+        let mut any_err = cache
+            .texture(
+                p.to_str().unwrap(),
+                0,
+                3,
+                square(0.5, 0.5, 10.0, 0.0),
+                &LookupOptions::default(),
+            )
+            .is_err();
+        for i in 0..64 {
+            let s = (i as f32 + 0.5) / 64.0;
+            any_err |= cache
+                .texture(
+                    p.to_str().unwrap(),
+                    0,
+                    3,
+                    [[s, 1.0 - s]; 4],
+                    &LookupOptions::default(),
+                )
+                .is_err();
+        }
+        assert!(
+            any_err,
+            "cut at {cut} of {} bytes went unnoticed",
+            bytes.len()
+        );
+    }
+    let garbage = temp("garbage.tx");
+    let mut g = vec![0x76u8, 0x2f, 0x31, 0x01];
+    g.extend((0..5000u32).map(|i| (i.wrapping_mul(2654435761) >> 13) as u8));
+    std::fs::write(&garbage, g).unwrap();
+    assert!(cache
+        .texture(
+            garbage.to_str().unwrap(),
+            0,
+            3,
+            [[0.5, 0.5]; 4],
+            &LookupOptions::default()
+        )
+        .is_err());
+}
