@@ -16,18 +16,19 @@ use crate::{TextureCache, TextureError};
 use glam::Vec3;
 use std::f32::consts::PI;
 
-/// Lat-long (s,t) of a direction, RenderMan orientation as assumed here: +z is the top row
-/// (t = 0), t = θ/π from +z; s = φ/2π with φ = atan2(y, x) measured from +x toward +y.
+/// Lat-long (s,t) of a direction in the RenderMan (z-up) orientation, as OpenImageIO reads
+/// PRMan lat-long maps: +z is the top row (t = θ/π from +z) and s = ½ + φ/2π with
+/// φ = atan2(y, x), so −x is at the left edge, +x in the middle, +y at s = ¾.
 pub fn latlong_st(d: Vec3) -> (f32, f32) {
     let d = d.normalize_or_zero();
     let t = d.z.clamp(-1.0, 1.0).acos() / PI;
-    let s = (d.y.atan2(d.x) / (2.0 * PI)).rem_euclid(1.0);
+    let s = (0.5 + d.y.atan2(d.x) / (2.0 * PI)).rem_euclid(1.0);
     (s, t)
 }
 
 /// Inverse of [`latlong_st`].
 pub fn latlong_direction(s: f32, t: f32) -> Vec3 {
-    let (phi, theta) = (s * 2.0 * PI, t * PI);
+    let (phi, theta) = ((s - 0.5) * 2.0 * PI, t * PI);
     Vec3::new(
         theta.sin() * phi.cos(),
         theta.sin() * phi.sin(),
@@ -192,6 +193,9 @@ mod tests {
     fn latlong_round_trips_and_puts_plus_z_on_top() {
         assert!(latlong_st(Vec3::Z).1 < 1e-6);
         assert!((latlong_st(Vec3::NEG_Z).1 - 1.0).abs() < 1e-6);
+        // OpenImageIO's z-up convention: +x mid-image, +y three quarters across.
+        assert!((latlong_st(Vec3::X).0 - 0.5).abs() < 1e-6);
+        assert!((latlong_st(Vec3::Y).0 - 0.75).abs() < 1e-6);
         for &(s, t) in &[(0.1, 0.3), (0.7, 0.9), (0.5, 0.5)] {
             let (s2, t2) = latlong_st(latlong_direction(s, t));
             assert!((s - s2).abs() < 1e-5 && (t - t2).abs() < 1e-5);
