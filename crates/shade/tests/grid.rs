@@ -233,3 +233,99 @@ fn derivatives_and_area_by_grid_differences() {
     let s = g.deriv_u(&g.s);
     assert!(s.iter().all(|&x| (x - 1.0).abs() < 1e-5));
 }
+
+#[test]
+fn thinplastic_is_lit_from_behind_through_diffuse_of_minus_nf() {
+    // The light travels toward the camera (-z) and reaches the back of the camera-facing sphere.
+    let back = light(
+        "distantlight",
+        &[floats("to", &[0.0, 0.0, -1.0])],
+        DMat4::IDENTITY,
+    )
+    .unwrap()
+    .0;
+    let (s, _) = surface("thinplastic", &[floats("Kt", &[0.3])]).unwrap();
+    let mut g = sphere_grid(12, 8);
+    shade_surface(&s, &mut g, &[&back], &ShadingEnv::new());
+    for k in 0..g.len() {
+        // Nf faces the camera; -Nf faces the light: cos = -Nf·L = -n·(0,0,1)... = -n.z.
+        let cos = (-g.n[k].z).max(0.0);
+        assert_close(g.ci[k], g.cs[k] * 0.3 * cos, "thinplastic backlight");
+    }
+    let (p, _) = surface("plastic", &[]).unwrap();
+    let mut g = sphere_grid(12, 8);
+    shade_surface(&p, &mut g, &[&back], &ShadingEnv::new());
+    assert!(
+        g.ci.iter().all(|&c| c == Vec3::ZERO),
+        "plastic ignores lights behind"
+    );
+}
+
+#[test]
+fn metals_scale_specular_by_the_base_colour() {
+    let l = distant();
+    for (name, kd) in [("metal", 0.0f32), ("roughmetal", 0.1)] {
+        let (s, _) = surface(name, &[floats("roughness", &[0.3])]).unwrap();
+        let mut g = sphere_grid(12, 8);
+        shade_surface(&s, &mut g, &[&l], &ShadingEnv::new());
+        for k in 0..g.len() {
+            let lv = toward_light();
+            let cos = g.n[k].dot(lv);
+            let want = if cos < 0.0 {
+                Vec3::ZERO
+            } else {
+                let h = (lv + Vec3::NEG_Z).normalize();
+                1.5 * g.cs[k] * (kd * cos + g.n[k].dot(h).max(0.0).powf(1.0 / 0.3))
+            };
+            assert_close(g.ci[k], want, name);
+        }
+    }
+}
+
+#[test]
+fn wardanisotropic_defaults_xdir_to_dpdu_and_rotating_it_changes_the_highlight() {
+    let l = distant();
+    let (s, _) = surface("wardanisotropic", &[]).unwrap();
+    let mut a = sphere_grid(16, 8);
+    shade_surface(&s, &mut a, &[&l], &ShadingEnv::new());
+    // Per point, the grid equals Kd·diffuse + Ks·ward with xdir = normalize(dPdu).
+    for k in 0..a.len() {
+        let lv = toward_light();
+        let n = a.n[k];
+        let x = (a.dpdu[k] - n * n.dot(a.dpdu[k])).normalize();
+        let cos = n.dot(lv).max(0.0);
+        let w = illume_shade::ward_anisotropic_term(n, Vec3::NEG_Z, lv, x, 0.15, 0.5);
+        assert_close(
+            a.ci[k],
+            1.5 * a.cs[k] * (0.1 * cos + if cos > 0.0 { w } else { 0.0 }),
+            "ward",
+        );
+    }
+    let (t, _) = surface(
+        "wardanisotropic",
+        &[floats("vector xdir", &[0.0, 0.0, 1.0])],
+    )
+    .unwrap();
+    let mut b = sphere_grid(16, 8);
+    shade_surface(&t, &mut b, &[&l], &ShadingEnv::new());
+    assert!((0..a.len()).any(|k| (a.ci[k] - b.ci[k]).length() > 1e-2));
+}
+
+#[test]
+fn specular_model_option_values() {
+    assert_eq!(
+        SpecularModel::from_option("prman"),
+        Some(SpecularModel::PrMan)
+    );
+    assert_eq!(
+        SpecularModel::from_option("BMRT"),
+        Some(SpecularModel::PrMan)
+    );
+    assert_eq!(
+        SpecularModel::from_option("blinn"),
+        Some(SpecularModel::Blinn)
+    );
+    assert_eq!(SpecularModel::from_option("phong"), None);
+    assert_eq!(SpecularModel::default(), SpecularModel::Blinn);
+    assert_eq!(SpecularModel::PrMan.exponent(0.1), 80.0);
+}
