@@ -249,4 +249,41 @@ mod tests {
         assert!(triangulate(&[line]).is_empty());
         assert!(triangulate(&[vec![v(f64::NAN, 0.), v(1., 0.), v(0., 1.)]]).is_empty());
     }
+
+    proptest::proptest! {
+        #[test]
+        fn star_polygons_with_a_hole_keep_their_area(
+            radii in proptest::collection::vec(0.5f64..3.0, 3..40),
+            hole in 0.0f64..0.45,
+            hole_sides in 3usize..9,
+        ) {
+            // Star-shaped about the origin (angles increase), so the polygon is simple and a
+            // hole of radius < 0.5 around the origin lies inside it.
+            let n = radii.len();
+            let outer: Vec<DVec2> = radii
+                .iter()
+                .enumerate()
+                .map(|(i, r)| DVec2::from_angle(i as f64 / n as f64 * std::f64::consts::TAU) * *r)
+                .collect();
+            let mut loops = vec![outer];
+            if hole > 0.05 {
+                loops.push(
+                    (0..hole_sides)
+                        .map(|i| DVec2::from_angle(i as f64 / hole_sides as f64 * std::f64::consts::TAU) * hole)
+                        .collect(),
+                );
+            }
+            let pts: Vec<DVec2> = loops.iter().flatten().copied().collect();
+            let shoelace = |l: &[DVec2]| {
+                let idx: Vec<usize> = (0..l.len()).collect();
+                signed_area(l, &idx).abs()
+            };
+            let expected = shoelace(&loops[0]) - loops.get(1).map_or(0.0, |h| shoelace(h));
+            let tris = triangulate(&loops);
+            let got = area(&pts, &tris);
+            proptest::prop_assert!((got - expected).abs() < 1e-9 * expected.max(1.0), "{got} vs {expected}");
+            // Every triangle is positively oriented and none overlaps a hole vertex's interior.
+            proptest::prop_assert!(tris.iter().all(|t| cross(pts[t[0]], pts[t[1]], pts[t[2]]) > 0.0));
+        }
+    }
 }

@@ -13,6 +13,20 @@
 //!   `Orientation`/`ReverseOrientation`/handedness flips are the hider's job (it knows the
 //!   attributes). A user `N` is interpolated and transformed to camera space with the inverse
 //!   transpose, into [`Grid::n`]; without one, `n == ng`.
+//!
+//! # What `build` returns
+//! Every request builds a list of [`Parametric`] pieces (all diceable): one per quadric, one
+//! per subpatch of a mesh (32 for the teapot), one per convex quad or ear-clipped triangle of a
+//! polygon. Their `(u, v)` run over `[0,1]²` of the piece's own surface; [`Grid::du`]/`dv` are
+//! the steps in those units. Orientation of the raw `dPdu × dPdv`: outward for a quadric with
+//! positive `thetamax` (inward when it is negative, as the u sweep reverses); along the
+//! right-hand rule of the vertex order for polygons and of (u, v) for patches.
+//!
+//! # Numerics
+//! Evaluation is analytic in f64 (quadrics in closed form, bicubic patches in power form,
+//! bilinear pieces by interpolation), rounded to f32 only when stored in the [`Grid`]. Bounds
+//! are conservative (quadrics: annular-sector boxes of the sub-range; bicubics: Bézier hull of
+//! the sub-range) and padded by 1e-6 relative so every diced point lies inside.
 #![forbid(unsafe_code)]
 
 pub mod basis;

@@ -248,7 +248,7 @@ pub fn build_mesh(
         uniform: patches,
         varying: u.varying * v.varying,
         vertex: u.n * v.n,
-        facevarying: 4 * patches,
+        facevarying: patches.saturating_mul(4),
     };
     let vars = resolve(request, params, ctx.declarations, &counts)?;
     let pts = positions(request, &vars, &u, &v)?;

@@ -110,15 +110,19 @@ pub fn build_polygons(
     let name = request.name();
     let (topo, params): (Topology, &ParamList) = match request {
         R::Polygon { params } => {
-            let n = params
-                .iter()
-                .find(|p| matches!(bare_name(&p.name), "P" | "Pw"))
-                .map(|p| p.value.len() / if bare_name(&p.name) == "Pw" { 4 } else { 3 })
-                .ok_or_else(|| invalid(name, "needs \"P\" or \"Pw\"".to_string()))?;
+            let n = point_count(name, params)?;
             (topology(name, &[1], &[n], None)?, params)
         }
         R::GeneralPolygon { nverts, params } => {
             let nv = counts_of(name, "nverts", nverts)?;
+            // Check against the points given before allocating per-corner tables.
+            let (total, n) = (nv.iter().sum::<usize>(), point_count(name, params)?);
+            if total != n {
+                return Err(invalid(
+                    name,
+                    format!("nverts adds up to {total} vertices but {n} points were given"),
+                ));
+            }
             (topology(name, &[nv.len()], &nv, None)?, params)
         }
         R::PointsPolygons {
@@ -284,6 +288,15 @@ fn signed_area(p: &[DVec2]) -> f64 {
         .map(|i| p[i].perp_dot(p[(i + 1) % p.len()]))
         .sum::<f64>()
         * 0.5
+}
+
+/// How many points `P` (or `Pw`) holds, for the requests whose topology is implicit.
+fn point_count(request: &str, params: &ParamList) -> Result<usize, GeomError> {
+    params
+        .iter()
+        .find(|p| matches!(bare_name(&p.name), "P" | "Pw"))
+        .map(|p| p.value.len() / if bare_name(&p.name) == "Pw" { 4 } else { 3 })
+        .ok_or_else(|| invalid(request, "needs \"P\" or \"Pw\"".to_string()))
 }
 
 /// The variable name of a parameter token, without any inline declaration.

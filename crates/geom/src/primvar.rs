@@ -151,7 +151,8 @@ fn resolve_one(
     counts: &ClassCounts,
 ) -> Result<PrimVar, GeomError> {
     let n = counts.count(decl.class);
-    let expected = n * decl.element_size();
+    // Saturating: hostile counts or array lengths must not overflow (they only fail the check).
+    let expected = n.saturating_mul(decl.ty.components().saturating_mul(decl.array_len));
     let found = value.len();
     let array = if decl.array_len > 1 {
         format!("[{}]", decl.array_len)

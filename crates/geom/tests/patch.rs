@@ -320,6 +320,15 @@ fn bad_meshes_are_errors_not_panics() {
         &[f32::NAN, 0., 0., 1., 0., 0., 0., 1., 0., 1., 1., 0.],
     );
     assert!(build(&nan, &ctx()).is_err());
+    let hostile = mesh(
+        "bilinear",
+        i32::MAX,
+        "nonperiodic",
+        i32::MAX,
+        "periodic",
+        vec![floats("P", &[0.0; 12])],
+    );
+    assert!(build(&hostile, &ctx()).is_err());
     let missing = Request::Patch {
         kind: "bilinear".into(),
         params: vec![],

@@ -183,6 +183,25 @@ fn bad_polygons_are_errors_with_counts() {
     )
     .is_err());
     assert!(build(&Request::Polygon { params: vec![] }, &ctx()).is_err());
+    // Hostile counts fail the checks without allocating for them.
+    let r = Request::GeneralPolygon {
+        nverts: ints(&[i32::MAX, i32::MAX]),
+        params: vec![floats("P", &square)],
+    };
+    assert!(build(&r, &ctx()).is_err());
+    let r = Request::PointsPolygons {
+        nverts: ints(&[3]),
+        verts: ints(&[0, 1, i32::MAX]),
+        params: vec![floats("P", &square)],
+    };
+    assert!(build(&r, &ctx()).is_err());
+    let r = Request::Polygon {
+        params: vec![
+            floats("P", &square),
+            floats("varying float[4611686018427387904] big", &[1.0]),
+        ],
+    };
+    assert!(build(&r, &ctx()).is_err());
     // Degenerate faces (collinear, two vertices) build nothing rather than failing.
     let line = pts(&[[0., 0., 0.], [1., 0., 0.], [2., 0., 0.]]);
     assert!(build_ok(&Request::Polygon {

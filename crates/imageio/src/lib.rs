@@ -11,18 +11,35 @@
 //! # Display types ([`write_display`])
 //! | kind | file | samples |
 //! |---|---|---|
-//! | `tiff`, `file` | TIFF, Deflate-compressed strips | 8/16-bit per [`Quantize`], 32-bit float when `one == 0`; any image with a `z` channel is all float (depth is never quantized) |
-//! | `png` | PNG | 8/16-bit per [`Quantize`] (float settings write 16-bit); a `z` channel is dropped |
+//! | `tiff`, `file` | TIFF, Deflate-compressed strips | 8-bit when `max ≤ 255`, 16-bit when `max ≤ 65535`, else 32-bit float (always when `one == 0`, see [`Quantize::sample_depth`]); any image with a `z` channel is all float (depth is never quantized) |
+//! | `png` | PNG | 8/16-bit per [`Quantize`] (float settings write 16-bit); colour divided by alpha (PNG alpha is unassociated); a `z` channel is dropped |
 //! | `openexr`, `exr` | OpenEXR, ZIP | colour as `half` unless `Quantize` has `one == 0`, then 32-bit float; `Z` always float; never quantized or clamped (EXR is linear HDR) |
 //! | `zfile` | PRMan zfile | the `z` channel as float32 plus the [`DepthMatrices`] |
 //! | `framebuffer` | PNG at [`framebuffer_path`] | as `png` |
 //!
 //! `shadow` (a `.sm` texture) is written by the texture crate, not here.
 //!
+//! `read_image` returns premultiplied colour whatever the format (PNG colour is multiplied by
+//! its alpha on reading, as OpenImageIO does).
+//!
 //! # Channel names
 //! Images carry lower-case names: `r`, `g`, `b`, `a`, `z`, and `y` for a single grey channel
-//! read from a file (TIFF/PNG/JPEG grey, OpenEXR `Y`). Other channels keep their lower-cased file
-//! names (`channel4` for an unnamed fifth TIFF sample).
+//! read from a file (TIFF/PNG/JPEG grey, OpenEXR `Y`). OpenEXR channels keep their lower-cased
+//! names, ordered r, g, b, a, z, y, then the rest. TIFF has no channel names: our writer stores
+//! them in `ImageDescription` (`Illume channels r,g,b,z`); other TIFFs get r,g,b (or y) and then,
+//! for extra samples, `a` for the first alpha (or the first extra when `ExtraSamples` is absent,
+//! as in old Aqsis/PRMan files), `z` for the next unspecified one, and `channelN` after that.
+//!
+//! # Reading
+//! [`read_image`] picks the decoder from the file's signature: TIFF (own decoder: strips or
+//! tiles, contiguous or planar, none/LZW/Deflate/PackBits, predictors 2 and 3, 8/16/32-bit
+//! integers, 16/32/64-bit floats, grey/RGB/palette, any sample count), PNG and JPEG (the `image`
+//! crate), OpenEXR (scanline or tiled, first layer, largest level) and PRMan zfile (either byte
+//! order). Sizes are checked against [`MAX_DIMENSION`] and [`MAX_SAMPLES`] before allocating.
+//!
+//! # Crop windows
+//! [`write_display_cropped`] takes the full-frame position of the image's top-left pixel; dither
+//! is a hash of full-frame (x, y, channel), so crops tile into the full frame bit for bit.
 #![forbid(unsafe_code)]
 
 mod atomic_write;
@@ -35,9 +52,10 @@ mod tiff_file;
 mod zfile;
 
 pub use framebuffer::framebuffer_path;
+pub use openexr::world_to_ndc;
 pub use quantize::{dither_noise, SampleDepth};
 pub use raster_limits::{MAX_DIMENSION, MAX_SAMPLES};
-pub use zfile::{read_zfile, write_zfile, ZFILE_MAGIC};
+pub use zfile::{read_zfile, write_zfile, write_zfile_with_order, ZFILE_MAGIC};
 
 use std::path::Path;
 use thiserror::Error;
@@ -178,8 +196,8 @@ pub(crate) fn io_error(path: &Path, source: std::io::Error) -> ImageError {
 /// Writes one display (`Display "name" "type" "mode"`): `kind` is the display type
 /// (`tiff`/`file`, `png`, `openexr`/`exr`, `zfile`, `framebuffer`), case-insensitive.
 /// `framebuffer` writes to [`framebuffer_path`]`(path)`, not to `path`.
-/// `depth` is required by `zfile` and recorded by `openexr` (as `worldToCamera`/`worldToNDC`
-/// are not derivable here, it is ignored by the other kinds).
+/// `depth` is required by `zfile`, recorded by `openexr` (`worldToCamera`, `worldToNDC`) and
+/// ignored by the other kinds.
 pub fn write_display(
     path: &Path,
     kind: &str,
@@ -187,12 +205,27 @@ pub fn write_display(
     quantize: Quantize,
     depth: Option<&DepthMatrices>,
 ) -> Result<(), ImageError> {
+    write_display_cropped(path, kind, image, quantize, depth, [0, 0])
+}
+
+/// [`write_display`] for an image that is a `CropWindow` of a larger frame: `origin` is the
+/// full-frame raster position (x, y) of its top-left pixel. Dither depends on full-frame pixel
+/// positions only, so crops rendered separately and pasted together equal the full render
+/// bit for bit.
+pub fn write_display_cropped(
+    path: &Path,
+    kind: &str,
+    image: &Image,
+    quantize: Quantize,
+    depth: Option<&DepthMatrices>,
+    origin: [u32; 2],
+) -> Result<(), ImageError> {
     image.validate(path)?;
     match kind.to_ascii_lowercase().as_str() {
-        "tiff" | "file" => tiff_file::write_tiff(path, image, quantize),
-        "png" => png_file::write_png(path, image, quantize),
-        "framebuffer" => png_file::write_png(&framebuffer_path(path), image, quantize),
-        "openexr" | "exr" => openexr::write_exr(path, image, quantize),
+        "tiff" | "file" => tiff_file::write_tiff(path, image, quantize, origin),
+        "png" => png_file::write_png(path, image, quantize, origin),
+        "framebuffer" => png_file::write_png(&framebuffer_path(path), image, quantize, origin),
+        "openexr" | "exr" => openexr::write_exr(path, image, quantize, depth),
         "zfile" => {
             let Some(depth) = depth else {
                 return Err(format_error(

@@ -6,6 +6,9 @@
 //! (`one == 0`, e.g. `Quantize "rgba" 0 0 0 0`), then 32-bit float. Depth (`Z`) is always
 //! 32-bit float: half's 11-bit mantissa cannot hold camera depths for shadow lookups.
 //! Channels are named `R`, `G`, `B`, `A`, `Z` (OpenEXR conventions); scanlines, ZIP compression.
+//! Given the camera's [`DepthMatrices`], the header records OpenEXR's standard `worldToCamera`
+//! and `worldToNDC` attributes (Imath row-vector order, the same as RIB's), so compositors and
+//! OpenImageIO can reproject the depth.
 //!
 //! Reading: scanline or tiled files, the first valid layer at its largest resolution level
 //! (level 0 of a mip- or rip-map); names are lower-cased (`Y` → `y`) and ordered
@@ -13,7 +16,7 @@
 
 use crate::atomic_write::write_atomically;
 use crate::raster_limits::check_size;
-use crate::{format_error, Image, ImageError, Quantize};
+use crate::{format_error, DepthMatrices, Image, ImageError, Quantize};
 use exr::prelude::*;
 use std::path::Path;
 
@@ -22,6 +25,7 @@ pub(crate) fn write_exr(
     path: &Path,
     image: &Image,
     quantize: Quantize,
+    depth: Option<&DepthMatrices>,
 ) -> std::result::Result<(), ImageError> {
     let nc = image.channels.len();
     let float_color = quantize.one == 0;
@@ -42,9 +46,14 @@ pub(crate) fn write_exr(
         list.push(AnyChannel::new(exr_name, samples));
     }
     let size = (image.width as usize, image.height as usize);
+    let mut attributes = LayerAttributes::default();
+    if let Some(d) = depth {
+        attributes.world_to_camera = Some(d.world_to_camera);
+        attributes.world_to_normalized_device = Some(world_to_ndc(&d.world_to_screen));
+    }
     let layer = Layer::new(
         size,
-        LayerAttributes::default(),
+        attributes,
         Encoding {
             compression: Compression::ZIP16,
             blocks: Blocks::ScanLines,
@@ -59,6 +68,27 @@ pub(crate) fn write_exr(
             .to_buffered(w)
             .map_err(|e| format_error(path, format!("OpenEXR encoder: {e}")))
     })
+}
+
+/// `Np · S`: screen space (`[-1,1]²`, y up) to NDC (`[0,1]²`, y down), in row-vector order.
+/// The map is affine in x and y, so it applies to homogeneous coordinates before the divide:
+/// `x_ndc·w = 0.5·x + 0.5·w`, `y_ndc·w = -0.5·y + 0.5·w`.
+pub fn world_to_ndc(world_to_screen: &[f32; 16]) -> [f32; 16] {
+    let s: [f64; 16] = [
+        0.5, 0.0, 0.0, 0.0, //
+        0.0, -0.5, 0.0, 0.0, //
+        0.0, 0.0, 1.0, 0.0, //
+        0.5, 0.5, 0.0, 1.0,
+    ];
+    let mut out = [0f32; 16];
+    for r in 0..4 {
+        for c in 0..4 {
+            out[r * 4 + c] = (0..4)
+                .map(|k| world_to_screen[r * 4 + k] as f64 * s[k * 4 + c])
+                .sum::<f64>() as f32;
+        }
+    }
+    out
 }
 
 /// Rank of a channel name in the order images carry them.

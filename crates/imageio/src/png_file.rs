@@ -1,6 +1,11 @@
 //! PNG (the `png` and `framebuffer` displays) and the PNG/JPEG readers.
 //!
-//! PNG holds 8 or 16-bit unsigned samples in grey, grey+alpha, RGB or RGBA. The writer keeps the
+//! PNG holds 8 or 16-bit unsigned samples in grey, grey+alpha, RGB or RGBA, and its alpha is
+//! *unassociated* (PNG specification §12.8) while rendered colour is premultiplied: the writer
+//! divides colour by alpha before quantizing (where alpha > 0) and the reader multiplies it back,
+//! so `read_image` returns premultiplied colour for every format, as OpenImageIO does.
+//!
+//! The writer keeps the
 //! colour and alpha channels (a `z` channel has no place in PNG and is dropped; a depth-only image
 //! is an error), quantizes per [`Quantize`], and uses 16 bits when the setting is wider than 8 bits
 //! or float. Reading goes through the `image` crate with its allocation limits set from
@@ -14,7 +19,12 @@ use std::path::Path;
 
 /// Writes `image` as PNG. Channel layouts: `rgb`, `rgba`, one channel (grey), or one channel and
 /// `a` (grey+alpha); other layouts keep their first three or four channels in order.
-pub(crate) fn write_png(path: &Path, image: &Image, quantize: Quantize) -> Result<(), ImageError> {
+pub(crate) fn write_png(
+    path: &Path,
+    image: &Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+) -> Result<(), ImageError> {
     let image = image.select(|c| c != "z");
     if image.channels.is_empty() {
         return Err(format_error(
@@ -37,13 +47,14 @@ pub(crate) fn write_png(path: &Path, image: &Image, quantize: Quantize) -> Resul
         },
         _ => quantize,
     };
+    let image = associate_alpha(image, false);
     let color = match image.channels.len() {
         1 => png::ColorType::Grayscale,
         2 => png::ColorType::GrayscaleAlpha,
         3 => png::ColorType::Rgb,
         _ => png::ColorType::Rgba,
     };
-    let (depth, bytes) = match quantize_image(&image, quantize) {
+    let (depth, bytes) = match quantize_image(&image, quantize, origin) {
         Samples::U8(v) => (png::BitDepth::Eight, v),
         Samples::U16(v) => (
             png::BitDepth::Sixteen,
@@ -56,6 +67,8 @@ pub(crate) fn write_png(path: &Path, image: &Image, quantize: Quantize) -> Resul
         let mut encoder = png::Encoder::new(w, image.width, image.height);
         encoder.set_color(color);
         encoder.set_depth(depth);
+        // Renders are written once and viewed: favour speed over the last few percent of size.
+        encoder.set_compression(png::Compression::Fast);
         let mut writer = encoder.write_header().map_err(to_err)?;
         writer.write_image_data(&bytes).map_err(to_err)?;
         writer.finish().map_err(to_err)
@@ -96,12 +109,36 @@ pub(crate) fn read_png_or_jpeg(path: &Path) -> Result<Image, ImageError> {
         other => (&["r", "g", "b", "a"], other.into_rgba32f().into_raw()),
     };
     check_size(path, w as u64, h as u64, names.len() as u64)?;
-    Ok(Image {
+    let image = Image {
         width: w,
         height: h,
         channels: names.iter().map(|s| s.to_string()).collect(),
         data,
-    })
+    };
+    Ok(associate_alpha(image, true))
+}
+
+/// Multiplies (`premultiply`) or divides the non-alpha channels by alpha. Division leaves
+/// pixels with alpha ≤ 0 unchanged (their colour cannot be recovered).
+fn associate_alpha(mut image: Image, premultiply: bool) -> Image {
+    let Some(a) = image.channel_index("a") else {
+        return image;
+    };
+    let nc = image.channels.len();
+    for px in image.data.chunks_exact_mut(nc) {
+        let alpha = px[a];
+        for (c, v) in px.iter_mut().enumerate() {
+            if c == a {
+                continue;
+            }
+            if premultiply {
+                *v *= alpha;
+            } else if alpha > 0.0 {
+                *v /= alpha;
+            }
+        }
+    }
+    image
 }
 
 fn norm8(v: &[u8]) -> Vec<f32> {

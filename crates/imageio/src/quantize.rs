@@ -198,19 +198,30 @@ pub(crate) enum Samples {
     F32(Vec<f32>),
 }
 
-/// Quantizes every sample of `image` (pixel order, channel index as dither stream).
-pub(crate) fn quantize_image(image: &crate::Image, quantize: Quantize) -> Samples {
+/// Quantizes every sample of `image` (pixel order, channel index as dither stream). `origin` is
+/// the full-frame raster position of the image's top-left pixel: dither is keyed on full-frame
+/// positions, so crop windows rendered separately tile into the full image bit for bit.
+pub(crate) fn quantize_image(
+    image: &crate::Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+) -> Samples {
     let nc = image.channels.len().max(1);
     let w = image.width.max(1) as usize;
     let at = |i: usize| {
         let pixel = i / nc;
-        let (x, y) = ((pixel % w) as u32, (pixel / w) as u32);
+        let (x, y) = (
+            origin[0].wrapping_add((pixel % w) as u32),
+            origin[1].wrapping_add((pixel / w) as u32),
+        );
         quantize.quantize(image.data[i], x, y, (i % nc) as u32)
     };
     let n = image.data.len();
+    // Each sample depends only on its own position, so the parallel map is deterministic.
+    use rayon::prelude::*;
     match quantize.sample_depth() {
-        SampleDepth::U8 => Samples::U8((0..n).map(|i| at(i) as u8).collect()),
-        SampleDepth::U16 => Samples::U16((0..n).map(|i| at(i) as u16).collect()),
-        SampleDepth::Float => Samples::F32((0..n).map(|i| at(i) as f32).collect()),
+        SampleDepth::U8 => Samples::U8((0..n).into_par_iter().map(|i| at(i) as u8).collect()),
+        SampleDepth::U16 => Samples::U16((0..n).into_par_iter().map(|i| at(i) as u16).collect()),
+        SampleDepth::Float => Samples::F32((0..n).into_par_iter().map(|i| at(i) as f32).collect()),
     }
 }

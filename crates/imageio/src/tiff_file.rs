@@ -91,14 +91,19 @@ fn ascii(tag: u16, text: &str) -> Entry {
 }
 
 /// Writes `image` as a TIFF (see the module documentation for the layout).
-pub(crate) fn write_tiff(path: &Path, image: &Image, quantize: Quantize) -> Result<(), ImageError> {
+pub(crate) fn write_tiff(
+    path: &Path,
+    image: &Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+) -> Result<(), ImageError> {
     // Depth is never quantized, and TIFF readers expect one sample format per file.
     let quantize = if image.channel_index("z").is_some() {
         Quantize::FLOAT
     } else {
         quantize
     };
-    let samples = quantize_image(image, quantize);
+    let samples = quantize_image(image, quantize, origin);
     let (bits, format, bytes): (u16, u16, Vec<u8>) = match &samples {
         Samples::U8(v) => (8, 1, v.clone()),
         Samples::U16(v) => (16, 1, v.iter().flat_map(|s| s.to_le_bytes()).collect()),
@@ -108,13 +113,18 @@ pub(crate) fn write_tiff(path: &Path, image: &Image, quantize: Quantize) -> Resu
     let row_bytes = image.width as usize * nc * bits as usize / 8;
     let rows_per_strip = (65536 / row_bytes.max(1)).clamp(1, image.height as usize);
 
-    // Compress each strip on its own so readers can decode strips independently.
-    let mut strips = Vec::new();
-    for rows in bytes.chunks(rows_per_strip * row_bytes) {
-        let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
-        z.write_all(rows).map_err(|e| io_error(path, e))?;
-        strips.push(z.finish().map_err(|e| io_error(path, e))?);
-    }
+    // Compress each strip on its own so readers can decode strips independently; strips are
+    // independent, so they compress in parallel and the bytes do not depend on thread count.
+    use rayon::prelude::*;
+    let strips = bytes
+        .par_chunks(rows_per_strip * row_bytes)
+        .map(|rows| {
+            let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+            z.write_all(rows)?;
+            z.finish()
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| io_error(path, e))?;
 
     let color = nc >= 3 && image.channels[..3] == ["r", "g", "b"];
     let photometric_samples = if color { 3 } else { 1 };
@@ -571,23 +581,32 @@ pub(crate) fn decode_tiff(path: &Path, data: &[u8]) -> Result<Image, ImageError>
             chunk_spp as usize,
             big_endian,
         );
+        let x0 = cx as usize * chunk_w as usize;
+        let cols = (chunk_w as usize).min(w.saturating_sub(x0));
+        let mut values = Vec::with_capacity(cols * chunk_spp as usize);
         for row in 0..rows_here {
             let y = cy as usize * chunk_h as usize + row;
             if y >= h {
                 break;
             }
             let row_data = &bytes[row * row_bytes..(row + 1) * row_bytes];
-            for col in 0..chunk_w as usize {
-                let x = cx as usize * chunk_w as usize + col;
-                if x >= w {
-                    break;
+            row_to_f32(
+                row_data,
+                cols * chunk_spp as usize,
+                bits as usize,
+                kind,
+                big_endian,
+                max_value,
+                &mut values,
+            );
+            let start = (y * w + x0) * nc;
+            if planar == 2 {
+                let c = plane as usize;
+                for (i, &v) in values.iter().enumerate() {
+                    out[start + i * nc + c] = v;
                 }
-                for s in 0..chunk_spp as usize {
-                    let index = col * chunk_spp as usize + s;
-                    let v = sample(row_data, index, bits as usize, kind, big_endian, max_value);
-                    let c = if planar == 2 { plane as usize } else { s };
-                    out[(y * w + x) * nc + c] = v;
-                }
+            } else {
+                out[start..start + values.len()].copy_from_slice(&values);
             }
         }
     }
@@ -602,6 +621,21 @@ pub(crate) fn decode_tiff(path: &Path, data: &[u8]) -> Result<Image, ImageError>
         let names: Vec<String> = names.split(',').map(|s| s.trim().to_string()).collect();
         if names.len() == nc {
             channels = names;
+        }
+    }
+    // Unassociated alpha (ExtraSamples 2): premultiply, so every reader returns associated
+    // colour (as OpenImageIO does).
+    let first_extra = nc - extra.len().min(nc);
+    if let Some(a) = channels.iter().position(|c| c == "a") {
+        if a >= first_extra && extra.get(a - first_extra) == Some(&2) {
+            for px in out.chunks_exact_mut(nc) {
+                let alpha = px[a];
+                for (c, v) in px.iter_mut().enumerate() {
+                    if c != a && channels[c] != "z" {
+                        *v *= alpha;
+                    }
+                }
+            }
         }
     }
     if photometric == 3 {
@@ -693,6 +727,40 @@ fn expand_palette(
         channels: vec!["r".into(), "g".into(), "b".into()],
         data,
     })
+}
+
+/// The first `n` samples of a decoded row, normalised, into `out` (cleared first). The common
+/// 8/16/32-bit cases are tight loops; the rest go through [`sample`].
+fn row_to_f32(
+    row: &[u8],
+    n: usize,
+    bits: usize,
+    kind: SampleKind,
+    be: bool,
+    max: f64,
+    out: &mut Vec<f32>,
+) {
+    out.clear();
+    match (bits, kind) {
+        (8, SampleKind::Unsigned) => out.extend(row[..n].iter().map(|&b| b as f32 / 255.0)),
+        (16, SampleKind::Unsigned) => out.extend(row[..2 * n].chunks_exact(2).map(|c| {
+            let v = if be {
+                u16::from_be_bytes([c[0], c[1]])
+            } else {
+                u16::from_le_bytes([c[0], c[1]])
+            };
+            v as f32 / 65535.0
+        })),
+        (32, SampleKind::Float) => out.extend(row[..4 * n].chunks_exact(4).map(|c| {
+            let b = [c[0], c[1], c[2], c[3]];
+            if be {
+                f32::from_be_bytes(b)
+            } else {
+                f32::from_le_bytes(b)
+            }
+        })),
+        _ => out.extend((0..n).map(|i| sample(row, i, bits, kind, be, max))),
+    }
 }
 
 /// Sample `index` of a decoded row, normalised: integers to [0, 1] (signed to [-1, 1]).
@@ -965,6 +1033,91 @@ mod tests {
                 .map(|i| (crate::dither_noise(i, seed, 9) * 127.0 + 128.0) as u8)
                 .collect();
             let _ = lzw_decode(&bytes, 1000);
+        }
+    }
+
+    /// A minimal big-endian ("MM") TIFF: 16-bit RGB, uncompressed, horizontal predictor,
+    /// two strips — byte order, predictor and strip bookkeeping built by hand from TIFF 6.0.
+    fn big_endian_tiff(pixels: &[[u16; 3]], width: u16, height: u16) -> Vec<u8> {
+        let mut strip = Vec::new();
+        for row in pixels.chunks(width as usize) {
+            let mut prev = [0u16; 3];
+            for px in row {
+                for c in 0..3 {
+                    strip.extend(px[c].wrapping_sub(prev[c]).to_be_bytes());
+                }
+                prev = *px;
+            }
+        }
+        let row_bytes = width as usize * 6;
+        let split = 2 * row_bytes; // two rows per strip: the second strip is short
+        let mut t = b"MM\0*".to_vec();
+        let data_at = 8u32;
+        let bps_at = data_at + strip.len() as u32;
+        let ifd_at = bps_at + 6;
+        t.extend(ifd_at.to_be_bytes());
+        t.extend(&strip);
+        t.extend([0, 16, 0, 16, 0, 16]);
+        let entries: [(u16, u16, u32, u32); 10] = [
+            (256, 3, 1, (width as u32) << 16),
+            (257, 3, 1, (height as u32) << 16),
+            (258, 3, 3, bps_at),
+            (259, 3, 1, 1 << 16),
+            (262, 3, 1, 2 << 16),
+            (273, 4, 2, 0), // patched below: two offsets need an out-of-line array
+            (277, 3, 1, 3 << 16),
+            (278, 3, 1, 2 << 16),
+            (279, 4, 2, 0),
+            (317, 3, 1, 2 << 16),
+        ];
+        let arrays_at = ifd_at + 2 + 12 * entries.len() as u32 + 4;
+        t.extend((entries.len() as u16).to_be_bytes());
+        for (tag, kind, count, value) in entries {
+            let value = match tag {
+                273 => arrays_at,
+                279 => arrays_at + 8,
+                _ => value,
+            };
+            t.extend(tag.to_be_bytes());
+            t.extend(kind.to_be_bytes());
+            t.extend(count.to_be_bytes());
+            t.extend(value.to_be_bytes());
+        }
+        t.extend(0u32.to_be_bytes());
+        for v in [data_at, data_at + split as u32] {
+            t.extend(v.to_be_bytes());
+        }
+        for v in [split as u32, (strip.len() - split) as u32] {
+            t.extend(v.to_be_bytes());
+        }
+        t
+    }
+
+    #[test]
+    fn big_endian_16bit_with_horizontal_predictor_decodes_exactly() {
+        let (w, h) = (5u16, 3u16);
+        let pixels: Vec<[u16; 3]> = (0..(w * h) as u32)
+            .map(|i| {
+                [
+                    (i * 4099) as u16,
+                    65535 - (i * 77) as u16,
+                    (i * i * 1013) as u16,
+                ]
+            })
+            .collect();
+        let bytes = big_endian_tiff(&pixels, w, h);
+        let image = decode_tiff(Path::new("mm.tif"), &bytes).unwrap();
+        assert_eq!((image.width, image.height), (5, 3));
+        assert_eq!(image.channels, ["r", "g", "b"]);
+        let want: Vec<f32> = pixels
+            .iter()
+            .flatten()
+            .map(|&v| (v as f64 / 65535.0) as f32)
+            .collect();
+        assert_eq!(image.data, want);
+        // Every truncation is an error, never a panic.
+        for len in 0..bytes.len() - 1 {
+            let _ = decode_tiff(Path::new("mm.tif"), &bytes[..len]);
         }
     }
 }

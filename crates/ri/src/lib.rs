@@ -1,1 +1,27 @@
-//! See Cargo.toml description; contract in progress.
+//! The RenderMan Interface state machine (RI Specification 3.2, chapter 4): options, the
+//! attribute and transformation stacks, declarations, coordinate systems, archives, object
+//! instances and frames.
+//!
+//! Feed it [`Spanned`](illume_rib::Spanned) [`Request`](illume_rib::Request)s with
+//! [`Ri::request`]; at every `WorldEnd` a complete [`Frame`] is queued for the hider
+//! ([`Ri::take_frames`]). Problems are collected as [`Diagnostic`]s (`file:line:col: error:
+//! Request: message`), drained with [`Ri::drain_diagnostics`]; the state always recovers.
+#![forbid(unsafe_code)]
+
+pub mod attributes;
+pub mod camera;
+pub mod declarations;
+pub mod diagnostic;
+pub mod frame;
+pub mod options;
+pub mod paramlist;
+pub mod state;
+pub mod transform;
+
+pub use attributes::{Attributes, Light, Shader};
+pub use camera::Camera;
+pub use declarations::Declarations;
+pub use diagnostic::{Diagnostic, Diagnostics, Severity};
+pub use frame::{Frame, FramePrimitive};
+pub use options::{DepthFilter, DisplaySpec, Options, Projection, QuantizeSpec};
+pub use state::{RequestSource, Ri, StreamParser, TextureMaker};

@@ -583,7 +583,8 @@ impl<R: Read> Lexer<R> {
             0xcc => {
                 let c = self.take(1, p, "a request definition")?[0];
                 let name = self.definition_string(p)?;
-                if name.is_empty() || !name.bytes().all(is_name_byte) {
+                let starts_alpha = name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+                if !starts_alpha || !name.bytes().all(is_name_byte) {
                     return Err(self.error(p, format!("bad binary request name {name:?}")));
                 }
                 self.requests.insert(c, Arc::from(name.as_str()));
@@ -609,6 +610,15 @@ impl<R: Read> Lexer<R> {
                 ))
             }
         };
+        let finite = match &token {
+            Token::Float(f) => f.is_finite(),
+            Token::FloatArray(v) => v.iter().all(|f| f.is_finite()),
+            _ => true,
+        };
+        if !finite {
+            // As in ASCII RIB, where `inf` and `nan` do not lex: no request takes them.
+            return Err(self.error(p, "binary float is infinite or NaN"));
+        }
         Ok(Some((token, p)))
     }
 

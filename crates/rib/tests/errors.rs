@@ -210,3 +210,13 @@ fn truncated_gzip_is_a_read_error_after_the_good_requests() {
         "{errors:?}"
     );
 }
+
+#[test]
+fn binary_nan_is_an_error() {
+    let (h, names) = headlines(b"\xcc\x01\x95Scale\xa6\x01\xa4\x7f\xc0\x00\x00\xa4\x00\x00\x00\x00\xa4\x00\x00\x00\x00WorldBegin");
+    assert_eq!(
+        h,
+        ["scene.rib:1:11: error: Scale: binary float is infinite or NaN"]
+    );
+    assert_eq!(names, ["WorldBegin"]);
+}

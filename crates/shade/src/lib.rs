@@ -27,7 +27,7 @@ pub use displacement::{displace, displacement, Displacement};
 pub use error::ShadeError;
 pub use geometric::{faceforward, fresnel, normalize_or_zero, reflect, refract, Fresnel};
 pub use illuminance::{category_matches, Illuminance};
-pub use light::{light, Light, LightCache, LightSamples};
+pub use light::{light, AreaSample, Light, LightCache, LightSamples};
 pub use lighting::{
     blinn_phong, diffuse_term, glossy_term, oren_nayar_term, phong_term, specularbrdf,
     ward_anisotropic_term,
@@ -37,5 +37,5 @@ pub use mathfunctions::{mix, smoothstep};
 pub use parameters::ParamValue;
 pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;
-pub use surface::{shade_surface, shade_surface_with, surface, Surface};
+pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};

@@ -19,6 +19,18 @@ pub struct Light {
     pub(crate) params: ShaderParams,
     /// The light's "shader" space (the CTM at the `LightSource` request) as camera_from_shader.
     pub(crate) camera_from_shader: DMat4,
+    /// Points sampled on an area light's geometry (`arealight`), camera space.
+    pub(crate) area_samples: Vec<AreaSample>,
+}
+
+/// One point on an area light's geometry (Table 9.3: the light shader's `P` and `N`), in camera
+/// space, with its share of the light (`weight`, the samples' weights summing to 1 for a light
+/// whose `intensity` is its total).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaSample {
+    pub p: Vec3,
+    pub n: Vec3,
+    pub weight: f32,
 }
 
 /// Binds light shader `name` with `params`. `camera_from_shader` is the CTM when the
@@ -51,12 +63,22 @@ pub fn light(
             kind,
             params,
             camera_from_shader,
+            area_samples: Vec::new(),
         },
         warnings,
     ))
 }
 
 impl Light {
+    /// Gives an `arealight` its geometry: each sample illuminates as Listing 9.18's
+    /// `illuminate(P, N, PI/2)` and appears as its own light in illuminance loops, its `Cl`
+    /// scaled by `weight`. Without samples an `arealight` is a point at its shader-space origin
+    /// radiating in every direction. Ignored by the other lights.
+    pub fn with_area_samples(mut self, samples: Vec<AreaSample>) -> Light {
+        self.area_samples = samples;
+        self
+    }
+
     /// The shader name as bound.
     pub fn name(&self) -> &str {
         &self.name
@@ -125,7 +147,7 @@ impl LightSamples {
     }
 }
 
-/// Every light of the grid, run once.
+/// Every light of the grid, run once (an area light appears once per geometry sample).
 pub struct LightCache<'l> {
     pub lights: Vec<(&'l Light, LightSamples)>,
 }
@@ -136,7 +158,11 @@ impl<'l> LightCache<'l> {
         LightCache {
             lights: lights
                 .iter()
-                .map(|&light| (light, lights::run(light, grid, env)))
+                .flat_map(|&light| {
+                    lights::run(light, grid, env)
+                        .into_iter()
+                        .map(move |s| (light, s))
+                })
                 .collect(),
         }
     }

@@ -167,3 +167,55 @@ impl ShadingGrid {
             .collect()
     }
 }
+
+impl ShadingGrid {
+    /// `Du(x)`: the derivative of a per-point quantity along u by grid differences (forward,
+    /// backward on the last column), divided by `du`. A one-column grid has zero derivative.
+    pub fn deriv_u<T>(&self, x: &[T]) -> Vec<T>
+    where
+        T: Copy + std::ops::Sub<Output = T> + std::ops::Mul<f32, Output = T>,
+    {
+        self.deriv(x, true)
+    }
+
+    /// `Dv(x)`, as [`ShadingGrid::deriv_u`] along v.
+    pub fn deriv_v<T>(&self, x: &[T]) -> Vec<T>
+    where
+        T: Copy + std::ops::Sub<Output = T> + std::ops::Mul<f32, Output = T>,
+    {
+        self.deriv(x, false)
+    }
+
+    fn deriv<T>(&self, x: &[T], along_u: bool) -> Vec<T>
+    where
+        T: Copy + std::ops::Sub<Output = T> + std::ops::Mul<f32, Output = T>,
+    {
+        let (count, step, spacing) = if along_u {
+            (self.nu, 1, self.du)
+        } else {
+            (self.nv, self.nu, self.dv)
+        };
+        let inv = if spacing != 0.0 { 1.0 / spacing } else { 0.0 };
+        (0..self.len())
+            .map(|i| {
+                let k = if along_u { i % self.nu } else { i / self.nu };
+                if count < 2 {
+                    x[i] * 0.0
+                } else if k + 1 < count {
+                    (x[i + step] - x[i]) * inv
+                } else {
+                    (x[i] - x[i - step]) * inv
+                }
+            })
+            .collect()
+    }
+
+    /// `area(P)`: `|Du(P) × Dv(P)| du dv`, the micropolygon area at each point.
+    pub fn area(&self) -> Vec<f32> {
+        let (pu, pv) = (self.deriv_u(&self.p), self.deriv_v(&self.p));
+        pu.iter()
+            .zip(&pv)
+            .map(|(a, b)| a.cross(*b).length() * self.du * self.dv)
+            .collect()
+    }
+}

@@ -57,15 +57,23 @@ pub fn surface(name: &str, params: &[Param]) -> Result<(Surface, Vec<String>), S
 /// Shades `grid` with `surface` under `lights`: runs each light once over the grid (the
 /// [`LightCache`] every illuminance loop reads), then the surface, then `Oi = Os; Ci = Os * C`
 /// as every listing ends. Any non-finite result is replaced by black (`Ci`) / opaque (`Oi`) so
-/// no NaN reaches a pixel (the formulas are guarded; this is a last line).
+/// no NaN reaches a pixel (the formulas are guarded; this is a last line). Returns how many
+/// points had to be repaired, for the hider's `--stats`.
 pub fn shade_surface(
     surface: &Surface,
     grid: &mut ShadingGrid,
     lights: &[&Light],
     env: &ShadingEnv,
-) {
+) -> ShadeStats {
     let cache = LightCache::run(lights, grid, env);
-    shade_surface_with(surface, grid, &cache, env);
+    shade_surface_with(surface, grid, &cache, env)
+}
+
+/// What [`shade_surface`] reports about one grid.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ShadeStats {
+    /// Grid points whose `Ci` or `Oi` came out NaN/Inf and were replaced (black / opaque).
+    pub nonfinite: usize,
 }
 
 /// [`shade_surface`] with lights already run (e.g. to inspect or reuse the cache).
@@ -74,7 +82,8 @@ pub fn shade_surface_with(
     grid: &mut ShadingGrid,
     cache: &LightCache,
     env: &ShadingEnv,
-) {
+) -> ShadeStats {
+    let mut stats = ShadeStats::default();
     let color = {
         let ctx = SurfaceContext::new(grid, cache, env, &surface.params);
         surface.kind.shade(&ctx)
@@ -82,7 +91,9 @@ pub fn shade_surface_with(
     for (i, c) in color.into_iter().enumerate() {
         let os = grid.os[i];
         let ci = c * os;
+        stats.nonfinite += (!os.is_finite() || !ci.is_finite()) as usize;
         grid.oi[i] = if os.is_finite() { os } else { Vec3::ONE };
         grid.ci[i] = if ci.is_finite() { ci } else { Vec3::ZERO };
     }
+    stats
 }

@@ -196,3 +196,40 @@ fn every_surface_shades_a_degenerate_grid_without_nan() {
         }
     }
 }
+
+#[test]
+fn nonfinite_inputs_are_repaired_and_counted() {
+    let (s, _) = surface("matte", &[]).unwrap();
+    let mut g = sphere_grid(4, 4);
+    g.os[0] = Vec3::splat(f32::NAN);
+    g.cs[1] = Vec3::splat(f32::INFINITY);
+    let l = distant();
+    let stats = shade_surface(&s, &mut g, &[&l], &ShadingEnv::new());
+    assert_eq!(stats.nonfinite, 2);
+    assert_eq!((g.oi[0], g.ci[0]), (Vec3::ONE, Vec3::ZERO));
+    assert!(g.ci.iter().all(|c| c.is_finite()));
+}
+
+#[test]
+fn derivatives_and_area_by_grid_differences() {
+    // P = (2u, 3v², 1): Du(P) = (2,0,0), Dv(P) ≈ (0, 6v, 0) by forward differences.
+    let mut g = ShadingGrid::new(5, 5);
+    for k in 0..g.len() {
+        g.p[k] = Vec3::new(2.0 * g.u[k], 3.0 * g.v[k] * g.v[k], 1.0);
+    }
+    let (pu, pv) = (g.deriv_u(&g.p), g.deriv_v(&g.p));
+    let area = g.area();
+    for k in 0..g.len() {
+        assert!((pu[k] - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-5);
+        let (v0, v1) = if g.v[k] < 1.0 {
+            (g.v[k], g.v[k] + g.dv)
+        } else {
+            (g.v[k] - g.dv, g.v[k])
+        };
+        let want = 3.0 * (v1 * v1 - v0 * v0) / g.dv;
+        assert!((pv[k].y - want).abs() < 1e-4, "{} vs {want}", pv[k].y);
+        assert!((area[k] - 2.0 * want * g.du * g.dv).abs() < 1e-5);
+    }
+    let s = g.deriv_u(&g.s);
+    assert!(s.iter().all(|&x| (x - 1.0).abs() < 1e-5));
+}

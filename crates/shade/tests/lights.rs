@@ -381,3 +381,34 @@ fn missing_shadow_map_warns_once_and_is_unshadowed() {
         vec!["shadow map `key.sm` not found; unshadowed".to_string()]
     );
 }
+
+#[test]
+fn arealight_samples_illuminate_their_outside_hemisphere_with_inverse_square() {
+    use illume_shade::AreaSample;
+    let samples = vec![
+        AreaSample {
+            p: Vec3::new(0.0, 0.0, 0.0),
+            n: Vec3::Z,
+            weight: 0.5,
+        },
+        AreaSample {
+            p: Vec3::new(0.0, 0.0, 10.0),
+            n: Vec3::Z,
+            weight: 0.5,
+        },
+    ];
+    let l = light("arealight", &[floats("intensity", &[8.0])], DMat4::IDENTITY)
+        .unwrap()
+        .0
+        .with_area_samples(samples);
+    let g = grid_of(&[Vec3::new(0.0, 0.0, 2.0)]);
+    let cache = LightCache::run(&[&l], &g, &ShadingEnv::new());
+    assert_eq!(cache.lights.len(), 2, "one cache entry per sample");
+    let (a, b) = (&cache.lights[0].1, &cache.lights[1].1);
+    assert!(a.lit[0] && (a.cl[0] - Vec3::splat(0.5 * 8.0 / 4.0)).length() < 1e-6);
+    assert_eq!(a.l[0], Vec3::new(0.0, 0.0, -2.0));
+    assert!(
+        !b.lit[0] && b.cl[0] == Vec3::ZERO,
+        "the point is behind the second sample"
+    );
+}

@@ -1,6 +1,7 @@
 //! The built-in light shaders (chapter 9 §9.6, Listings 9.14–9.19, plus `shadowdistant` and
 //! `shadowpoint` as users expect them). Each file runs one light over a grid.
 mod ambientlight;
+mod arealight;
 mod distantlight;
 mod pointlight;
 mod shadow;
@@ -21,10 +22,11 @@ pub(crate) enum LightKind {
     ShadowSpot,
     ShadowDistant,
     ShadowPoint,
+    Area,
 }
 
 impl LightKind {
-    pub const NAMES: [&'static str; 7] = [
+    pub const NAMES: [&'static str; 8] = [
         "ambientlight",
         "distantlight",
         "pointlight",
@@ -32,6 +34,7 @@ impl LightKind {
         "shadowspot",
         "shadowdistant",
         "shadowpoint",
+        "arealight",
     ];
 
     pub fn from_name(name: &str) -> Option<LightKind> {
@@ -43,6 +46,7 @@ impl LightKind {
             "shadowspot" => LightKind::ShadowSpot,
             "shadowdistant" => LightKind::ShadowDistant,
             "shadowpoint" => LightKind::ShadowPoint,
+            "arealight" => LightKind::Area,
             _ => return None,
         })
     }
@@ -68,7 +72,7 @@ impl LightKind {
             ("width", ParamValue::Float(1.0)),
         ];
         match self {
-            LightKind::Ambient => {}
+            LightKind::Ambient | LightKind::Area => {}
             LightKind::Distant | LightKind::Point => {
                 p.push(from);
                 if self == LightKind::Distant {
@@ -100,13 +104,14 @@ impl LightKind {
     }
 }
 
-/// Runs `light` over every point of `grid`.
-pub(crate) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightSamples {
+/// Runs `light` over every point of `grid` (one result per area-light sample).
+pub(crate) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> Vec<LightSamples> {
     match light.kind {
-        LightKind::Ambient => ambientlight::run(light, grid),
-        LightKind::Distant | LightKind::ShadowDistant => distantlight::run(light, grid, env),
-        LightKind::Point | LightKind::ShadowPoint => pointlight::run(light, grid, env),
-        LightKind::Spot | LightKind::ShadowSpot => spotlight::run(light, grid, env),
+        LightKind::Ambient => vec![ambientlight::run(light, grid)],
+        LightKind::Distant | LightKind::ShadowDistant => vec![distantlight::run(light, grid, env)],
+        LightKind::Point | LightKind::ShadowPoint => vec![pointlight::run(light, grid, env)],
+        LightKind::Spot | LightKind::ShadowSpot => vec![spotlight::run(light, grid, env)],
+        LightKind::Area => arealight::run(light, grid),
     }
 }
 

@@ -1,0 +1,94 @@
+//! The attribute state of RI Spec 3.2 §4.2, shared (`Arc`) by every primitive made under it.
+use glam::DMat4;
+use illume_rib::{Handle, ParamList, Span};
+use std::sync::Arc;
+
+/// A shader instance: name, parameter list as written, and the coordinate system it was
+/// declared in ("shader" space).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shader {
+    pub name: String,
+    pub params: ParamList,
+    pub camera_from_shader: DMat4,
+    pub span: Span,
+}
+
+/// A light source or area light in the frame's light list.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    pub handle: Handle,
+    pub shader: Shader,
+    pub area: bool,
+}
+
+/// Bezier, the spec's default `Basis` (RI Spec 3.2 §5.2.1), in RIB row order.
+pub const BEZIER: [f32; 16] = [
+    -1.0, 3.0, -3.0, 1.0, 3.0, -6.0, 3.0, 0.0, -3.0, 3.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
+];
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Attributes {
+    pub color: [f32; 3],
+    pub opacity: [f32; 3],
+    pub shading_rate: f32,
+    /// `ShadingInterpolation "smooth"` (else "constant").
+    pub smooth_shading: bool,
+    pub matte: bool,
+    pub sides: i32,
+    /// The current orientation as an absolute handedness (RI Spec 3.2 `RiOrientation`:
+    /// "outside"/"inside" resolve against the current coordinate system when given). Camera
+    /// space is left-handed, so the camera-space normal `dPdu × dPdv` is the left-handed one
+    /// and the final normal is flipped exactly when this is `true`.
+    pub orientation_rh: bool,
+    pub texture_coordinates: [f32; 8],
+    /// (u basis, u step, v basis, v step), matrices in RIB row order.
+    pub basis: ([f32; 16], i32, [f32; 16], i32),
+    pub surface: Option<Arc<Shader>>,
+    pub displacement: Option<Arc<Shader>>,
+    pub atmosphere: Option<Arc<Shader>>,
+    pub interior: Option<Arc<Shader>>,
+    pub exterior: Option<Arc<Shader>>,
+    /// Indices into [`crate::Frame::lights`] of the lights that illuminate this primitive.
+    pub lights: Vec<usize>,
+    /// The area light this geometry defines, if inside an `AreaLightSource` block.
+    pub area_light: Option<usize>,
+    pub identifier: Option<String>,
+    /// `Attribute "displacementbound" "sphere"`, already scaled into camera space.
+    pub displacement_bound: f32,
+    /// `Attribute "dice" "binary"`: dice rates are powers of two.
+    pub dice_binary: bool,
+    /// `Detail` bound in camera space corners and `DetailRange`.
+    pub detail: Option<([f32; 6], DMat4)>,
+    pub detail_range: Option<[f32; 4]>,
+    /// `GeometricApproximation "flatness"`.
+    pub flatness: Option<f32>,
+}
+
+impl Default for Attributes {
+    fn default() -> Self {
+        Attributes {
+            color: [1.0; 3],
+            opacity: [1.0; 3],
+            shading_rate: 1.0,
+            smooth_shading: false,
+            matte: false,
+            sides: 2,
+            orientation_rh: false,
+            texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            basis: (BEZIER, 3, BEZIER, 3),
+            surface: None,
+            displacement: None,
+            atmosphere: None,
+            interior: None,
+            exterior: None,
+            lights: Vec::new(),
+            area_light: None,
+            identifier: None,
+            displacement_bound: 0.0,
+            dice_binary: false,
+            detail: None,
+            detail_range: None,
+            flatness: None,
+        }
+    }
+}
