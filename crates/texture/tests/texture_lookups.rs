@@ -483,3 +483,62 @@ fn truncated_or_garbage_texture_files_are_errors_not_panics() {
         )
         .is_err());
 }
+
+#[test]
+fn every_tile_of_every_level_returns_its_own_texels() {
+    // r and g encode the texel position, so a tile read into the wrong place shows.
+    let (w, h) = (300u32, 200u32);
+    let mut data = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            data.extend_from_slice(&[x as f32, y as f32, 1.0]);
+        }
+    }
+    let img = Image {
+        width: w,
+        height: h,
+        channels: vec!["r".into(), "g".into(), "b".into()],
+        data,
+    };
+    let path = temp("positions.tx");
+    let opts = MakeOptions {
+        format: PixelFormat::Float,
+        resize: Resize::None,
+        ..MakeOptions::default()
+    };
+    make_texture(&img, &path, &opts).unwrap();
+    let cache = TextureCache::new(1 << 24);
+    let name = path.to_str().unwrap();
+    for y in (0..h).step_by(7) {
+        for x in (0..w).step_by(5) {
+            let s = (x as f32 + 0.5) / w as f32;
+            let t = (y as f32 + 0.5) / h as f32;
+            let c = cache
+                .texture(name, 0, 2, [[s, t]; 4], &LookupOptions::default())
+                .unwrap();
+            assert!(
+                (c[0] - x as f32).abs() < 1e-3 && (c[1] - y as f32).abs() < 1e-3,
+                "texel ({x},{y}) read {c:?}"
+            );
+        }
+    }
+    // Level 1 (150×100, 3×2 tiles): box-filtered texel (i, j) averages texels 2i..2i+1.
+    for &(i, j) in &[(0u32, 0u32), (70, 10), (140, 90), (100, 70)] {
+        let s = (i as f32 + 0.5) / 150.0;
+        let t = (j as f32 + 0.5) / 100.0;
+        let wdt = 2.0 / w as f32;
+        let q = [
+            [s - wdt / 2.0, t - wdt / 2.0],
+            [s + wdt / 2.0, t - wdt / 2.0],
+            [s - wdt / 2.0, t + wdt / 2.0],
+            [s + wdt / 2.0, t + wdt / 2.0],
+        ];
+        let c = cache
+            .texture(name, 0, 2, q, &LookupOptions::default())
+            .unwrap();
+        assert!(
+            (c[0] - (2 * i) as f32 - 0.5).abs() < 0.6 && (c[1] - (2 * j) as f32 - 0.5).abs() < 0.6,
+            "level-1 texel ({i},{j}) read {c:?}"
+        );
+    }
+}
