@@ -641,7 +641,7 @@ impl<R: Read> Lexer<R> {
         if len > MAX_STRING {
             return Err(self.error(p, format!("binary string length {len} exceeds 16 MiB")));
         }
-        let mut out = Vec::with_capacity(len.min(CHUNK));
+        let mut out = Vec::with_capacity(len.min(4096));
         while out.len() < len {
             if self.pos == self.buf.len() && !self.fill() {
                 return Err(self.error(p, "binary RIB truncated in a string"));
@@ -655,7 +655,7 @@ impl<R: Read> Lexer<R> {
 
     /// `n` big-endian IEEE floats, read as they arrive.
     fn binary_floats(&mut self, n: usize, p: Pos) -> Result<Vec<f32>, LexError> {
-        let mut out = Vec::with_capacity(n.min(CHUNK));
+        let mut out = Vec::with_capacity(n.min(4096));
         while out.len() < n {
             if !self.ensure(4) {
                 self.pos = self.buf.len();

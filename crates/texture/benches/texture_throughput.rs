@@ -68,7 +68,7 @@ fn main() {
 
     let cache = TextureCache::new(256 << 20);
     let name = tx.to_str().unwrap();
-    let n = 200_000;
+    let n: u64 = 200_000;
     for (blur, width) in [
         (0.0f32, 1.0 / 4096.0),
         (0.0, 8.0 / 4096.0),
@@ -110,7 +110,7 @@ fn main() {
         for pass in ["cold", "warm"] {
             let t = Instant::now();
             let mut sum = 0.0f32;
-            let n = 100_000;
+            let n: u64 = 100_000;
             for i in 0..n {
                 let a = i as f32 * 0.61803;
                 let b = (i as f32 * 0.41421).sin();
@@ -127,6 +127,96 @@ fn main() {
                 n as f64 / secs / 1e6
             );
         }
+    }
+    // Shadow: a 2K depth map of a sphere-ish bump over a floor, light looking down +z.
+    let n = 2048u32;
+    let depth = Image {
+        width: n,
+        height: n,
+        channels: vec!["z".into()],
+        data: (0..n * n)
+            .map(|i| {
+                let sx = ((i % n) as f32 + 0.5) / n as f32 * 2.0 - 1.0;
+                let sy = 1.0 - ((i / n) as f32 + 0.5) / n as f32 * 2.0;
+                let r2 = sx * sx + sy * sy;
+                if r2 < 0.25 {
+                    4.0 - (0.25 - r2).sqrt()
+                } else {
+                    10.0
+                }
+            })
+            .collect(),
+    };
+    let mut identity = [0.0f32; 16];
+    for i in 0..4 {
+        identity[i * 5] = 1.0;
+    }
+    let m = illume_imageio::DepthMatrices {
+        world_to_screen: [
+            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, -1.0, 0.0,
+        ],
+        world_to_camera: identity,
+    };
+    let sm = dir.join("bench.sm");
+    illume_texture::make_shadow(&depth, &m, &sm, &MakeOptions::default()).unwrap();
+    for (samples, blur) in [(16u32, 0.0f32), (16, 0.01), (64, 0.01), (64, 0.05)] {
+        let o = LookupOptions {
+            samples,
+            blur,
+            bias: 0.01,
+            ..LookupOptions::default()
+        };
+        let t = Instant::now();
+        let mut sum = 0.0f32;
+        let k: u64 = 200_000;
+        for i in 0..k {
+            let sx = ((i * 7919) % 10007) as f32 / 10007.0 * 1.8 - 0.9;
+            let sy = ((i * 104729) % 10009) as f32 / 10009.0 * 1.8 - 0.9;
+            let p = Vec3::new(sx * 10.0, sy * 10.0, 10.0);
+            sum += cache.shadow(sm.to_str().unwrap(), [p; 4], &o).unwrap();
+        }
+        let secs = t.elapsed().as_secs_f64();
+        println!(
+            "shadow samples {samples} blur {blur}: {:.2} M lookups/s (mean shadow {:.4})",
+            k as f64 / secs / 1e6,
+            sum / k as f32
+        );
+    }
+    // Accuracy: filtered lookups against a brute-force reference that averages 32×32 unfiltered
+    // (level-0 bilinear) lookups over the same footprint with the same Gaussian weights.
+    for blur in [0.002f32, 0.01, 0.05] {
+        let o = LookupOptions {
+            blur,
+            ..LookupOptions::default()
+        };
+        let (mut err, mut worst) = (0.0f64, 0.0f32);
+        let m: u64 = 200;
+        for i in 0..m {
+            let s = 0.1 + 0.8 * ((i * 7919) % 1009) as f32 / 1009.0;
+            let t = 0.1 + 0.8 * ((i * 104729) % 1013) as f32 / 1013.0;
+            let got = cache.texture(name, 0, 1, [[s, t]; 4], &o).unwrap()[0];
+            let (mut acc, mut wsum) = (0.0f64, 0.0f64);
+            for a in 0..32 {
+                for b in 0..32 {
+                    let u = (a as f32 + 0.5) / 32.0 - 0.5;
+                    let v = (b as f32 + 0.5) / 32.0 - 0.5;
+                    let w = (-8.0 * (u * u + v * v)).exp() as f64;
+                    let p = [s + u * blur, t + v * blur];
+                    acc += w * cache
+                        .texture(name, 0, 1, [p; 4], &LookupOptions::default())
+                        .unwrap()[0] as f64;
+                    wsum += w;
+                }
+            }
+            let e = (got as f64 - acc / wsum).abs();
+            err += e;
+            worst = worst.max(e as f32);
+        }
+        println!(
+            "texture blur {blur}: mean |error| vs brute force {:.2e}, worst {:.2e}",
+            err / m as f64,
+            worst
+        );
     }
     let st = cache.stats();
     println!(

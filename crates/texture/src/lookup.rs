@@ -111,9 +111,50 @@ pub(crate) fn probe_grid(fp: &Footprint, max_aniso: u32, coarsest: f32) -> (usiz
     (n_major as usize, n_minor as usize, size)
 }
 
+/// The four corners (grid order) of the footprint of a point `(s, t)` whose coordinates change
+/// by `(ds_dx, dt_dx)` and `(ds_dy, dt_dy)` from one shading sample to the next (the
+/// single-point `texture(name, s, t)` form: derivatives from the grid).
+pub fn corners_from_derivatives(
+    s: f32,
+    t: f32,
+    ds_dx: f32,
+    dt_dx: f32,
+    ds_dy: f32,
+    dt_dy: f32,
+) -> [[f32; 2]; 4] {
+    let (hx, hy) = ([0.5 * ds_dx, 0.5 * dt_dx], [0.5 * ds_dy, 0.5 * dt_dy]);
+    [
+        [s - hx[0] - hy[0], t - hx[1] - hy[1]],
+        [s + hx[0] - hy[0], t + hx[1] - hy[1]],
+        [s - hx[0] + hy[0], t - hx[1] + hy[1]],
+        [s + hx[0] + hy[0], t + hx[1] + hy[1]],
+    ]
+}
+
+/// Direction corners (grid order) for `environment(name, D)` / `shadow(name, P)` from a value
+/// and its two screen differences (works for points as well as directions).
+pub fn vector_corners(d: glam::Vec3, dd_dx: glam::Vec3, dd_dy: glam::Vec3) -> [glam::Vec3; 4] {
+    let (hx, hy) = (dd_dx * 0.5, dd_dy * 0.5);
+    [d - hx - hy, d + hx - hy, d - hx + hy, d + hx + hy]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn corners_from_derivatives_span_one_sample_step_in_each_direction() {
+        let c = corners_from_derivatives(0.5, 0.25, 0.1, 0.0, 0.02, 0.04);
+        // (c1 - c0) is the x step, (c2 - c0) the y step; the centre is (s, t).
+        assert!(((c[1][0] - c[0][0]) - 0.1).abs() < 1e-7 && (c[1][1] - c[0][1]).abs() < 1e-7);
+        assert!(
+            ((c[2][0] - c[0][0]) - 0.02).abs() < 1e-7 && ((c[2][1] - c[0][1]) - 0.04).abs() < 1e-7
+        );
+        let cs: f32 = c.iter().map(|p| p[0]).sum::<f32>() / 4.0;
+        assert!((cs - 0.5).abs() < 1e-7);
+        let v = vector_corners(glam::Vec3::Z, glam::Vec3::X, glam::Vec3::Y);
+        assert_eq!(v[3] - v[0], glam::Vec3::new(1.0, 1.0, 0.0));
+    }
 
     #[test]
     fn footprint_of_orthogonal_axes_recovers_their_lengths() {

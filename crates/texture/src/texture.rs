@@ -38,7 +38,15 @@ impl TextureCache {
         let fp = footprint(a, b, blur);
         let max_level = f.levels.len() - 1;
         let coarsest = (1u64 << max_level) as f32;
-        let (nmaj, nmin, size) = probe_grid(&fp, opts.max_anisotropy, coarsest);
+        let (mut nmaj, mut nmin, mut size) = probe_grid(&fp, opts.max_anisotropy, coarsest);
+        // A lone trilinear probe filters with about twice its footprint (mip box plus bilinear
+        // tent); splitting near-isotropic footprints into 2×2 probes one level finer keeps the
+        // kernel close to the footprint at 4 probes' cost.
+        if size > 2.0 && nmaj <= 2 && nmin == 1 {
+            nmaj *= 2;
+            nmin = 2;
+            size *= 0.5;
+        }
         let minor = fp.minor.max(fp.major / opts.max_anisotropy.max(1) as f32);
         let lod = if size > 1.0 { size.log2() } else { 0.0 };
         let perp = [-fp.dir[1], fp.dir[0]];

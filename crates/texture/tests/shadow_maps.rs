@@ -196,3 +196,45 @@ fn shadow_lookup_on_a_plain_texture_is_a_kind_error() {
         "{r:?}"
     );
 }
+
+#[test]
+fn disc_occluder_shadows_exactly_the_points_behind_it() {
+    let sm = shadow_map("disc", 512, |sx, sy| {
+        let r2 = sx * sx + sy * sy;
+        if r2 < 0.25 {
+            4.0 - (0.25 - r2).sqrt()
+        } else {
+            10.0
+        }
+    });
+    let cache = TextureCache::new(64 * 1024); // tiny: evictions all the time
+
+    let name = sm.to_str().unwrap();
+    let opts = LookupOptions {
+        bias: 0.01,
+        ..LookupOptions::default()
+    };
+    let mut wrong = Vec::new();
+    for j in 0..41 {
+        for i in 0..41 {
+            let (sx, sy) = (i as f32 / 20.0 - 1.0, j as f32 / 20.0 - 1.0);
+            let r = (sx * sx + sy * sy).sqrt();
+            if (r - 0.5).abs() < 0.02 || sx.abs() > 0.99 || sy.abs() > 0.99 {
+                continue; // on the silhouette or the map's edge texels
+            }
+            let got = cache
+                .shadow(name, [on_screen(sx, sy, 10.0); 4], &opts)
+                .unwrap();
+            let want = if r < 0.5 { 1.0 } else { 0.0 };
+            if got != want {
+                wrong.push((sx, sy, got));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} wrong, e.g. {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(8)]
+    );
+}
