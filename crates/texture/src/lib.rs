@@ -29,6 +29,7 @@ pub mod filter;
 pub mod lookup;
 pub mod mipmap;
 mod sampler;
+pub mod shading;
 mod shadow;
 pub mod shadowmap;
 mod texture;
