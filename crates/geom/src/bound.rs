@@ -1,5 +1,5 @@
 //! Axis-aligned bounds in camera space.
-use glam::Vec3;
+use glam::{DMat4, DVec3, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bound {
@@ -56,5 +56,36 @@ impl Bound {
             Vec3::new(a.x, b.y, b.z),
             Vec3::new(b.x, b.y, b.z),
         ]
+    }
+
+    /// The bound of f64 points, rounded outward so every f32 rounding of a point inside the
+    /// f64 box (and of values computed a little differently, e.g. by another basis) stays inside.
+    pub fn from_dpoints(points: impl IntoIterator<Item = DVec3>) -> Bound {
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for p in points {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        if lo.cmpgt(hi).any() {
+            return Bound::EMPTY;
+        }
+        // Relative slack: 1e-6 of the largest coordinate magnitude (f32 has ~6e-8).
+        let pad = lo.abs().max(hi.abs()).max_element() * 1e-6 + 1e-30;
+        Bound {
+            min: (lo - DVec3::splat(pad)).as_vec3(),
+            max: (hi + DVec3::splat(pad)).as_vec3(),
+        }
+    }
+
+    /// The camera-space bound of an object-space box `[lo, hi]`: its eight corners transformed.
+    pub fn of_transformed_box(camera_from_object: &DMat4, lo: DVec3, hi: DVec3) -> Bound {
+        Bound::from_dpoints((0..8).map(|k| {
+            let c = DVec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            );
+            camera_from_object.transform_point3(c)
+        }))
     }
 }

@@ -13,15 +13,38 @@
 //!   `Orientation`/`ReverseOrientation`/handedness flips are the hider's job (it knows the
 //!   attributes). A user `N` is interpolated and transformed to camera space with the inverse
 //!   transpose, into [`Grid::n`]; without one, `n == ng`.
+//!
+//! # What `build` returns
+//! Every request builds a list of [`Parametric`] pieces (all diceable): one per quadric, one
+//! per subpatch of a mesh (32 for the teapot), one per convex quad or ear-clipped triangle of a
+//! polygon. Their `(u, v)` run over `[0,1]²` of the piece's own surface; [`Grid::du`]/`dv` are
+//! the steps in those units. Orientation of the raw `dPdu × dPdv`: outward for a quadric with
+//! positive `thetamax` (inward when it is negative, as the u sweep reverses); along the
+//! right-hand rule of the vertex order for polygons and of (u, v) for patches.
+//!
+//! # Numerics
+//! Evaluation is analytic in f64 (quadrics in closed form, bicubic patches in power form,
+//! bilinear pieces by interpolation), rounded to f32 only when stored in the [`Grid`]. Bounds
+//! are conservative (quadrics: annular-sector boxes of the sub-range; bicubics: Bézier hull of
+//! the sub-range) and padded by 1e-6 relative so every diced point lies inside.
 #![forbid(unsafe_code)]
 
+pub mod basis;
 pub mod bound;
+pub mod ear_clipping;
 pub mod grid;
+pub mod parametric;
+pub mod patch;
+pub mod polygon;
 pub mod primvar;
+pub mod quadric;
+pub mod teapot;
 
+pub use basis::basis_matrix;
 pub use bound::Bound;
 pub use grid::{Grid, GridVar};
-pub use primvar::{PrimVar, PrimVarData};
+pub use parametric::{Parametric, Surface};
+pub use primvar::{ClassCounts, PrimVar, PrimVarData};
 
 use glam::DMat4;
 use illume_rib::{Declaration, Request};
@@ -72,7 +95,76 @@ pub enum GeomError {
 
 /// Builds the primitives of one geometry request. Non-geometry requests are a bug in the
 /// caller and return [`GeomError::Unsupported`].
+///
+/// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
+/// Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons (convex or not, with
+/// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), `Geometry "teapot"`.
+/// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
+/// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
-    let _ = ctx;
-    Err(GeomError::Unsupported(request.name().to_string()))
+    if !ctx.camera_from_object.is_finite() {
+        return Err(GeomError::Invalid {
+            request: request.name().to_string(),
+            message: "the current transformation is not finite".to_string(),
+        });
+    }
+    match request {
+        Request::Sphere { params, .. }
+        | Request::Cone { params, .. }
+        | Request::Cylinder { params, .. }
+        | Request::Hyperboloid { params, .. }
+        | Request::Paraboloid { params, .. }
+        | Request::Disk { params, .. }
+        | Request::Torus { params, .. } => quadric::build_quadric(request, params, ctx),
+        Request::Polygon { .. }
+        | Request::GeneralPolygon { .. }
+        | Request::PointsPolygons { .. }
+        | Request::PointsGeneralPolygons { .. } => polygon::build_polygons(request, ctx),
+        Request::Patch { kind, params } => {
+            let (bicubic, n) = patch_kind(request.name(), kind)?;
+            let shape = patch::MeshShape {
+                bicubic,
+                nu: n,
+                uwrap: "nonperiodic",
+                nv: n,
+                vwrap: "nonperiodic",
+            };
+            patch::build_mesh(request.name(), shape, &ctx.basis, params, ctx)
+        }
+        Request::PatchMesh {
+            kind,
+            nu,
+            uwrap,
+            nv,
+            vwrap,
+            params,
+        } => {
+            let (bicubic, _) = patch_kind(request.name(), kind)?;
+            let shape = patch::MeshShape {
+                bicubic,
+                nu: *nu,
+                uwrap,
+                nv: *nv,
+                vwrap,
+            };
+            patch::build_mesh(request.name(), shape, &ctx.basis, params, ctx)
+        }
+        Request::Geometry { kind, params } if kind == "teapot" => teapot::build_teapot(params, ctx),
+        Request::Geometry { kind, .. } => {
+            Err(GeomError::Unsupported(format!("Geometry \"{kind}\"")))
+        }
+        _ => Err(GeomError::Unsupported(request.name().to_string())),
+    }
+}
+
+/// `"bilinear"` → (false, 2 control points per side), `"bicubic"` → (true, 4).
+fn patch_kind(request: &str, kind: &str) -> Result<(bool, i32), GeomError> {
+    match kind {
+        "bilinear" => Ok((false, 2)),
+        "bicubic" => Ok((true, 4)),
+        _ => Err(GeomError::Invalid {
+            request: request.to_string(),
+            message: format!("type must be \"bilinear\" or \"bicubic\", found \"{kind}\""),
+        }),
+    }
 }

@@ -1,0 +1,377 @@
+//! A parametric sub-range `[u0,u1] × [v0,v1]` of a surface: the one primitive the hider splits
+//! and dices. Quadrics, patches and polygon pieces are all [`Surface`]s with their primitive
+//! variables ([`SurfaceVar`]); this file owns the shared REYES mechanics.
+//!
+//! * **split** halves the range that is longer *in camera space* (estimated from a few chords),
+//!   so a thin sliver is cut across, not along.
+//! * **dice** evaluates P, dPdu, dPdv analytically in f64 at parameters that are exactly `u0`
+//!   and `u1` at the grid's ends, so two halves of a split evaluate their shared edge at the
+//!   same parameters and produce bit-identical vertices (no cracks).
+use crate::{Bound, Grid, GridVar, Primitive};
+use glam::{DMat3, DMat4, DVec3, Vec3};
+use illume_rib::Type;
+use std::sync::Arc;
+
+/// A surface over `(u, v) ∈ [0,1]²`, evaluated in camera space.
+pub trait Surface: Send + Sync + std::fmt::Debug {
+    /// Camera-space `(P, dP/du, dP/dv)` at `(u, v)`.
+    fn eval(&self, u: f64, v: f64) -> [DVec3; 3];
+    /// A conservative camera-space bound of the sub-range `[u0,u1] × [v0,v1]`.
+    fn bound(&self, u: [f64; 2], v: [f64; 2]) -> Bound;
+}
+
+/// How a primitive variable varies over one surface.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Interp {
+    /// Constant and uniform classes: one value over the whole surface.
+    Constant(Vec<f64>),
+    /// Varying (and, on bilinear surfaces, vertex/facevarying) values at the corners
+    /// `(0,0), (1,0), (0,1), (1,1)`, interpolated bilinearly.
+    Bilinear([Vec<f64>; 4]),
+    /// Vertex values on a bicubic patch in power form: per component, `c[4·i + j]`
+    /// multiplies `u^(3-i) · v^(3-j)` (so `c[15]` is the constant term).
+    Bicubic(Vec<[f64; 16]>),
+}
+
+/// One primitive variable of a surface (everything but the position).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceVar {
+    pub name: String,
+    pub ty: Type,
+    /// Scalars per value (`ty.components() × array_len`).
+    pub components: usize,
+    pub interp: Interp,
+}
+
+impl Interp {
+    fn eval_into(&self, u: f64, v: f64, out: &mut [f64]) {
+        match self {
+            Interp::Constant(c) => out.copy_from_slice(c),
+            Interp::Bilinear([a, b, c, d]) => {
+                let (w0, w1, w2, w3) = ((1.0 - u) * (1.0 - v), u * (1.0 - v), (1.0 - u) * v, u * v);
+                for (k, o) in out.iter_mut().enumerate() {
+                    *o = w0 * a[k] + w1 * b[k] + w2 * c[k] + w3 * d[k];
+                }
+            }
+            Interp::Bicubic(coeffs) => {
+                let uu = [u * u * u, u * u, u, 1.0];
+                let vv = [v * v * v, v * v, v, 1.0];
+                for (o, c) in out.iter_mut().zip(coeffs) {
+                    *o = power_eval(c, &uu, &vv);
+                }
+            }
+        }
+    }
+
+    /// Applies `f` to every 3-component element (points, vectors, normals) of this variable,
+    /// `constant_term` telling whether the value is a position (weights summing to one) or a
+    /// difference (power-form coefficients other than the constant term).
+    fn map_triples(&mut self, f: &dyn Fn(DVec3, bool) -> DVec3) {
+        let map = |vals: &mut Vec<f64>, position: bool| {
+            for e in vals.chunks_exact_mut(3) {
+                let r = f(DVec3::new(e[0], e[1], e[2]), position);
+                e.copy_from_slice(&r.to_array());
+            }
+        };
+        match self {
+            Interp::Constant(c) => map(c, true),
+            Interp::Bilinear(corners) => corners.iter_mut().for_each(|c| map(c, true)),
+            Interp::Bicubic(coeffs) => {
+                for e in coeffs.chunks_exact_mut(3) {
+                    let [x, y, z] = e else { continue };
+                    for (k, ((x, y), z)) in
+                        x.iter_mut().zip(y.iter_mut()).zip(z.iter_mut()).enumerate()
+                    {
+                        let r = f(DVec3::new(*x, *y, *z), k == 15);
+                        (*x, *y, *z) = (r.x, r.y, r.z);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `Σ c[4i+j] · uu[i] · vv[j]`.
+pub(crate) fn power_eval(c: &[f64; 16], uu: &[f64; 4], vv: &[f64; 4]) -> f64 {
+    let mut s = 0.0;
+    for i in 0..4 {
+        let row = c[4 * i] * vv[0] + c[4 * i + 1] * vv[1] + c[4 * i + 2] * vv[2] + c[4 * i + 3];
+        s += row * uu[i];
+    }
+    s
+}
+
+impl SurfaceVar {
+    /// Moves point, vector and normal variables from object to camera space: points as
+    /// points, vectors with the linear part, normals with its inverse transpose.
+    pub fn to_camera(&mut self, camera_from_object: &DMat4) {
+        let m = *camera_from_object;
+        let normal_m = DMat3::from_mat4(m).inverse().transpose();
+        match self.ty {
+            Type::Point => self.interp.map_triples(&|p, position| {
+                if position {
+                    m.transform_point3(p)
+                } else {
+                    m.transform_vector3(p)
+                }
+            }),
+            Type::Vector => self.interp.map_triples(&|p, _| m.transform_vector3(p)),
+            Type::Normal => self.interp.map_triples(&|p, _| normal_m * p),
+            _ => {}
+        }
+    }
+}
+
+/// Default `s`, `t` from `TextureCoordinates` (RI Spec 3.2 §4.3.3): the four (s,t) pairs sit at
+/// the corners of the unit (u,v) square. `corners` are the surface's corners in those (u,v).
+pub fn default_st(tc: &[f32; 8], corners: [[f64; 2]; 4]) -> [SurfaceVar; 2] {
+    let at = |k: usize, [u, v]: [f64; 2]| {
+        let c = |i: usize| tc[2 * i + k] as f64;
+        (1.0 - u) * (1.0 - v) * c(0) + u * (1.0 - v) * c(1) + (1.0 - u) * v * c(2) + u * v * c(3)
+    };
+    let var = |k: usize, name: &str| SurfaceVar {
+        name: name.to_string(),
+        ty: Type::Float,
+        components: 1,
+        interp: Interp::Bilinear(corners.map(|c| vec![at(k, c)])),
+    };
+    [var(0, "s"), var(1, "t")]
+}
+
+/// Adds default `s`/`t` for any of the two the user did not give (as `s`, `t` or `st`).
+pub fn with_default_st(mut vars: Vec<SurfaceVar>, defaults: [SurfaceVar; 2]) -> Vec<SurfaceVar> {
+    let has = |n: &str| vars.iter().any(|v| v.name == n || v.name == "st");
+    let [s, t] = defaults;
+    let (need_s, need_t) = (!has("s"), !has("t"));
+    if need_s {
+        vars.push(s);
+    }
+    if need_t {
+        vars.push(t);
+    }
+    vars
+}
+
+/// A sub-range of a [`Surface`] with its variables: bounded, split and diced by the hider.
+#[derive(Clone, Debug)]
+pub struct Parametric {
+    surface: Arc<dyn Surface>,
+    vars: Arc<Vec<SurfaceVar>>,
+    u: [f64; 2],
+    v: [f64; 2],
+}
+
+impl Parametric {
+    /// The whole surface `[0,1]²`.
+    pub fn new(surface: Arc<dyn Surface>, vars: Arc<Vec<SurfaceVar>>) -> Parametric {
+        Parametric {
+            surface,
+            vars,
+            u: [0.0, 1.0],
+            v: [0.0, 1.0],
+        }
+    }
+
+    /// The parametric sub-range this piece covers.
+    pub fn range(&self) -> ([f64; 2], [f64; 2]) {
+        (self.u, self.v)
+    }
+
+    /// This piece restricted to `u`, `v` (sub-ranges of `[0,1]`).
+    pub fn sub_range(&self, u: [f64; 2], v: [f64; 2]) -> Parametric {
+        Parametric {
+            u,
+            v,
+            ..self.clone()
+        }
+    }
+
+    fn p(&self, u: f64, v: f64) -> DVec3 {
+        self.surface.eval(u, v)[0]
+    }
+
+    /// Camera-space length of the piece along u (and along v): the longest of three
+    /// two-chord polylines, enough to pick which direction to split.
+    fn extents(&self) -> (f64, f64) {
+        let [u0, u1] = self.u;
+        let [v0, v1] = self.v;
+        let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        let chords = |a: DVec3, b: DVec3, c: DVec3| a.distance(b) + b.distance(c);
+        let lu = [v0, vm, v1]
+            .iter()
+            .map(|&v| chords(self.p(u0, v), self.p(um, v), self.p(u1, v)))
+            .fold(0.0, f64::max);
+        let lv = [u0, um, u1]
+            .iter()
+            .map(|&u| chords(self.p(u, v0), self.p(u, vm), self.p(u, v1)))
+            .fold(0.0, f64::max);
+        (lu, lv)
+    }
+}
+
+/// Parameter `i` of `n` evenly spaced over `[a, b]`, exactly `a` and `b` at the ends.
+fn lerp_param([a, b]: [f64; 2], i: usize, n: usize) -> f64 {
+    if i + 1 == n {
+        b
+    } else {
+        a + (b - a) * (i as f64 / (n - 1) as f64)
+    }
+}
+
+/// Splits `[a, b]` at its midpoint, or `None` when f64 cannot represent a point between them.
+fn halve([a, b]: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
+    let m = 0.5 * (a + b);
+    (m > a.min(b) && m < a.max(b)).then_some(([a, m], [m, b]))
+}
+
+impl Primitive for Parametric {
+    fn bound(&self) -> Bound {
+        self.surface.bound(self.u, self.v)
+    }
+
+    fn diceable(&self) -> bool {
+        true
+    }
+
+    /// Halves the longer camera-space direction. A range too small to halve in f64 is split
+    /// the other way; one that can shrink in neither returns itself (the hider's split limit
+    /// ends the recursion).
+    fn split(&self) -> Vec<Box<dyn Primitive>> {
+        let (lu, lv) = self.extents();
+        let split_u = |(a, b): ([f64; 2], [f64; 2])| -> Vec<Box<dyn Primitive>> {
+            vec![
+                Box::new(self.sub_range(a, self.v)),
+                Box::new(self.sub_range(b, self.v)),
+            ]
+        };
+        let split_v = |(a, b): ([f64; 2], [f64; 2])| -> Vec<Box<dyn Primitive>> {
+            vec![
+                Box::new(self.sub_range(self.u, a)),
+                Box::new(self.sub_range(self.u, b)),
+            ]
+        };
+        // NaN extents (a degenerate surface) fall back to splitting u.
+        let prefer_u = lv.partial_cmp(&lu) != Some(std::cmp::Ordering::Greater);
+        match (halve(self.u), halve(self.v)) {
+            (Some(hu), _) if prefer_u => split_u(hu),
+            (_, Some(hv)) => split_v(hv),
+            (Some(hu), None) => split_u(hu),
+            (None, None) => vec![Box::new(self.clone())],
+        }
+    }
+
+    fn dice(&self, nu: usize, nv: usize) -> Grid {
+        dice(self, nu.max(2), nv.max(2))
+    }
+}
+
+fn dice(piece: &Parametric, nu: usize, nv: usize) -> Grid {
+    let n = nu * nv;
+    let mut g = Grid {
+        nu,
+        nv,
+        du: ((piece.u[1] - piece.u[0]) / (nu - 1) as f64) as f32,
+        dv: ((piece.v[1] - piece.v[0]) / (nv - 1) as f64) as f32,
+        ..Grid::default()
+    };
+    for f in [&mut g.p, &mut g.n, &mut g.ng, &mut g.dpdu, &mut g.dpdv] {
+        f.reserve_exact(n);
+    }
+    let us: Vec<f64> = (0..nu).map(|i| lerp_param(piece.u, i, nu)).collect();
+    let vs: Vec<f64> = (0..nv).map(|j| lerp_param(piece.v, j, nv)).collect();
+    let centre = [
+        0.5 * (piece.u[0] + piece.u[1]),
+        0.5 * (piece.v[0] + piece.v[1]),
+    ];
+    for &v in &vs {
+        for &u in &us {
+            let [p, dpdu, dpdv] = piece.surface.eval(u, v);
+            g.p.push(p.as_vec3());
+            g.dpdu.push(dpdu.as_vec3());
+            g.dpdv.push(dpdv.as_vec3());
+            g.ng.push(geometric_normal(&*piece.surface, u, v, dpdu, dpdv, centre));
+            g.u.push(u as f32);
+            g.v.push(v as f32);
+        }
+    }
+    g.n = g.ng.clone();
+    fill_vars(&mut g, &piece.vars, &us, &vs);
+    g
+}
+
+/// `normalize(dPdu × dPdv)`; where that vanishes (a pole, the collapsed edge of a triangle)
+/// the normal of a point nudged toward the piece's centre, which is the limit normal there.
+fn geometric_normal(
+    s: &dyn Surface,
+    u: f64,
+    v: f64,
+    dpdu: DVec3,
+    dpdv: DVec3,
+    centre: [f64; 2],
+) -> Vec3 {
+    let ok = |a: DVec3, b: DVec3| {
+        let c = a.cross(b);
+        let l = c.length();
+        (l > 1e-12 * a.length() * b.length() && l.is_finite()).then(|| (c / l).as_vec3())
+    };
+    if let Some(n) = ok(dpdu, dpdv) {
+        return n;
+    }
+    for t in [1e-4, 1e-2, 0.5] {
+        let [_, a, b] = s.eval(u + t * (centre[0] - u), v + t * (centre[1] - v));
+        if let Some(n) = ok(a, b) {
+            return n;
+        }
+    }
+    Vec3::Z
+}
+
+fn fill_vars(g: &mut Grid, vars: &[SurfaceVar], us: &[f64], vs: &[f64]) {
+    let n = us.len() * vs.len();
+    for var in vars {
+        let c = var.components;
+        let mut data = Vec::with_capacity(n * c);
+        let mut tmp = vec![0.0f64; c];
+        for &v in vs {
+            for &u in us {
+                var.interp.eval_into(u, v, &mut tmp);
+                data.extend(tmp.iter().map(|&x| x as f32));
+            }
+        }
+        let triples =
+            |d: &[f32]| -> Vec<Vec3> { d.chunks_exact(3).map(Vec3::from_slice).collect() };
+        match (var.name.as_str(), var.ty, c) {
+            ("N", Type::Normal, 3) => {
+                g.n = triples(&data)
+                    .into_iter()
+                    .zip(&g.ng)
+                    .map(|(n, &ng)| n.try_normalize().unwrap_or(ng))
+                    .collect()
+            }
+            ("Cs", Type::Color, 3) => g.cs = Some(triples(&data)),
+            ("Os", Type::Color, 3) => g.os = Some(triples(&data)),
+            ("s", Type::Float, 1) => g.s = data,
+            ("t", Type::Float, 1) => g.t = data,
+            ("st", Type::Float, 2) => {
+                if g.s.is_empty() {
+                    g.s = data.iter().step_by(2).copied().collect();
+                }
+                if g.t.is_empty() {
+                    g.t = data.iter().skip(1).step_by(2).copied().collect();
+                }
+            }
+            _ => g.vars.push(GridVar {
+                name: var.name.clone(),
+                ty: var.ty,
+                components: c,
+                data,
+            }),
+        }
+    }
+    if g.s.is_empty() {
+        g.s = vec![0.0; n];
+    }
+    if g.t.is_empty() {
+        g.t = vec![0.0; n];
+    }
+}

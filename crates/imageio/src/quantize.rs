@@ -1,0 +1,227 @@
+//! `Quantize "rgba" one min max ditheramplitude` (RI spec 3.2, §4.1.6 "Display"):
+//!
+//! ```text
+//! value = round(one · value + ditheramplitude · random())
+//! value = clamp(value, min, max)
+//! ```
+//!
+//! `random()` is uniform in [-1, 1), so the default amplitude 0.5 spreads the rounding error over
+//! one code value. It is a hash of the pixel position and the channel, never a stateful generator:
+//! the same pixel gets the same dither whatever the bucket order or thread count, so two renders
+//! of one scene produce identical files.
+
+use crate::Quantize;
+
+/// The stored sample type a [`Quantize`] setting calls for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SampleDepth {
+    /// `one == 0`: 32-bit float, values written as they are.
+    Float,
+    /// `0 ≤ min`, `max ≤ 255`: 8-bit unsigned.
+    U8,
+    /// `max ≤ 65535`: 16-bit unsigned.
+    U16,
+}
+
+impl Quantize {
+    /// PRMan's defaults for colour: 8-bit with one code value of dither.
+    pub const RGBA_DEFAULT: Quantize = Quantize {
+        one: 255,
+        min: 0,
+        max: 255,
+        dither: 0.5,
+    };
+    /// Float output (the default for depth, and `Quantize "rgba" 0 0 0 0`).
+    pub const FLOAT: Quantize = Quantize {
+        one: 0,
+        min: 0,
+        max: 0,
+        dither: 0.0,
+    };
+
+    /// The sample type this setting writes. Integer settings whose `max` exceeds 65535 have no
+    /// unsigned type in PNG, so they are stored as float (holding the quantized integers).
+    pub fn sample_depth(&self) -> SampleDepth {
+        if self.one == 0 {
+            SampleDepth::Float
+        } else if self.max <= 255 {
+            SampleDepth::U8
+        } else if self.max <= 65535 {
+            SampleDepth::U16
+        } else {
+            SampleDepth::Float
+        }
+    }
+
+    /// Quantizes one sample of channel `channel` at pixel (`x`, `y`): the integer code value
+    /// (as f64, exact), clamped to `[min, max]` and then to the unsigned range of the stored
+    /// type. With `one == 0` returns the value unchanged.
+    pub fn quantize(&self, value: f32, x: u32, y: u32, channel: u32) -> f64 {
+        if self.one == 0 {
+            return value as f64;
+        }
+        let v = if value.is_nan() { 0.0 } else { value as f64 };
+        let noise = if self.dither != 0.0 {
+            self.dither as f64 * dither_noise(x, y, channel)
+        } else {
+            0.0
+        };
+        let q = (self.one as f64 * v + noise).round();
+        let (lo, hi) = (self.min.min(self.max) as f64, self.max as f64);
+        let q = q.clamp(lo, hi);
+        match self.sample_depth() {
+            SampleDepth::U8 => q.clamp(0.0, 255.0),
+            SampleDepth::U16 => q.clamp(0.0, 65535.0),
+            SampleDepth::Float => q,
+        }
+    }
+}
+
+/// Uniform noise in [-1, 1) from a hash of (x, y, channel): a 32-bit integer mix
+/// (the "lowbias32" finaliser), good enough that neighbouring pixels are uncorrelated.
+pub fn dither_noise(x: u32, y: u32, channel: u32) -> f64 {
+    let mut h = x
+        .wrapping_mul(0x9E37_79B1)
+        .wrapping_add(y.wrapping_mul(0x85EB_CA77))
+        .wrapping_add(channel.wrapping_mul(0xC2B2_AE3D))
+        ^ 0x27D4_EB2F;
+    h ^= h >> 16;
+    h = h.wrapping_mul(0x7FEB_352D);
+    h ^= h >> 15;
+    h = h.wrapping_mul(0x846C_A68B);
+    h ^= h >> 16;
+    (h as f64) / 2_147_483_648.0 - 1.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dither_noise_is_bounded_and_roughly_uniform() {
+        let mut sum = 0.0;
+        let mut bins = [0u32; 8];
+        let n = 256 * 256;
+        for y in 0..256 {
+            for x in 0..256 {
+                let r = dither_noise(x, y, 0);
+                assert!((-1.0..1.0).contains(&r), "noise {r} out of [-1,1)");
+                sum += r;
+                bins[((r + 1.0) * 4.0) as usize] += 1;
+            }
+        }
+        assert!((sum / n as f64).abs() < 0.01, "mean {}", sum / n as f64);
+        for b in bins {
+            let expected = n as f64 / 8.0;
+            assert!(
+                (b as f64 - expected).abs() < 0.05 * expected,
+                "bins {bins:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn dither_is_a_function_of_position_only() {
+        let q = Quantize::RGBA_DEFAULT;
+        let a: Vec<f64> = (0..1000)
+            .map(|i| q.quantize(0.3, i % 37, i / 37, i % 3))
+            .collect();
+        let b: Vec<f64> = (0..1000)
+            .rev()
+            .map(|i| q.quantize(0.3, i % 37, i / 37, i % 3))
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect();
+        assert_eq!(a, b);
+        // It actually dithers: 0.3·255 = 76.5 lands on both neighbours.
+        assert!(a.contains(&76.0) && a.contains(&77.0));
+    }
+
+    #[test]
+    fn dither_error_stays_within_amplitude_plus_half() {
+        let q = Quantize {
+            one: 1000,
+            min: -100000,
+            max: 100000,
+            dither: 2.0,
+        };
+        for i in 0..5000u32 {
+            let v = (i as f32) * 0.013 - 20.0;
+            let out = q.quantize(v, i, i * 7, 1);
+            let exact = 1000.0 * v as f64;
+            assert!((out - exact).abs() <= 2.5 + 1e-9, "{v}: {out} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn quantize_clamps_to_min_max_and_type_range() {
+        let q = Quantize {
+            one: 255,
+            min: 16,
+            max: 235,
+            dither: 0.0,
+        };
+        assert_eq!(q.quantize(-3.0, 0, 0, 0), 16.0);
+        assert_eq!(q.quantize(7.0, 0, 0, 0), 235.0);
+        assert_eq!(q.quantize(0.5, 0, 0, 0), 128.0); // 127.5 rounds away from zero
+        assert_eq!(q.quantize(f32::NAN, 0, 0, 0), 16.0);
+        let wide = Quantize {
+            one: 255,
+            min: -50,
+            max: 255,
+            dither: 0.0,
+        };
+        assert_eq!(wide.quantize(-1.0, 0, 0, 0), 0.0, "unsigned 8-bit floor");
+        assert_eq!(Quantize::FLOAT.quantize(-1.25, 3, 4, 0), -1.25);
+    }
+
+    #[test]
+    fn sample_depth_follows_one_and_max() {
+        assert_eq!(Quantize::RGBA_DEFAULT.sample_depth(), SampleDepth::U8);
+        assert_eq!(Quantize::FLOAT.sample_depth(), SampleDepth::Float);
+        let q16 = Quantize {
+            one: 65535,
+            min: 0,
+            max: 65535,
+            dither: 0.5,
+        };
+        assert_eq!(q16.sample_depth(), SampleDepth::U16);
+    }
+}
+
+/// Quantized samples ready for an encoder, interleaved like the [`crate::Image`] they came from.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Samples {
+    U8(Vec<u8>),
+    U16(Vec<u16>),
+    F32(Vec<f32>),
+}
+
+/// Quantizes every sample of `image` (pixel order, channel index as dither stream). `origin` is
+/// the full-frame raster position of the image's top-left pixel: dither is keyed on full-frame
+/// positions, so crop windows rendered separately tile into the full image bit for bit.
+pub(crate) fn quantize_image(
+    image: &crate::Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+) -> Samples {
+    let nc = image.channels.len().max(1);
+    let w = image.width.max(1) as usize;
+    let at = |i: usize| {
+        let pixel = i / nc;
+        let (x, y) = (
+            origin[0].wrapping_add((pixel % w) as u32),
+            origin[1].wrapping_add((pixel / w) as u32),
+        );
+        quantize.quantize(image.data[i], x, y, (i % nc) as u32)
+    };
+    let n = image.data.len();
+    // Each sample depends only on its own position, so the parallel map is deterministic.
+    use rayon::prelude::*;
+    match quantize.sample_depth() {
+        SampleDepth::U8 => Samples::U8((0..n).into_par_iter().map(|i| at(i) as u8).collect()),
+        SampleDepth::U16 => Samples::U16((0..n).into_par_iter().map(|i| at(i) as u16).collect()),
+        SampleDepth::Float => Samples::F32((0..n).into_par_iter().map(|i| at(i) as f32).collect()),
+    }
+}

@@ -1,0 +1,169 @@
+//! Light source instances and the per-grid light cache.
+//!
+//! A light shader runs once per grid (DESIGN.md “Shading”): [`LightCache::run`] evaluates every
+//! light at every point and keeps `L`, `Cl`, `Ol`; every illuminance loop of the surface shader
+//! (`diffuse()`, then `specular()`, …) reads the cache instead of re-running the light.
+use crate::error::ShadeError;
+use crate::lights::{self, LightKind};
+use crate::parameters::{ParamValue, ShaderParams};
+use crate::shadingenv::ShadingEnv;
+use crate::shadinggrid::ShadingGrid;
+use glam::{DMat4, Vec3};
+use illume_rib::Param;
+
+/// A bound light shader (`LightSource` / `AreaLightSource`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    pub(crate) name: String,
+    pub(crate) kind: LightKind,
+    pub(crate) params: ShaderParams,
+    /// The light's "shader" space (the CTM at the `LightSource` request) as camera_from_shader.
+    pub(crate) camera_from_shader: DMat4,
+    /// Points sampled on an area light's geometry (`arealight`), camera space.
+    pub(crate) area_samples: Vec<AreaSample>,
+}
+
+/// One point on an area light's geometry (Table 9.3: the light shader's `P` and `N`), in camera
+/// space, with its share of the light (`weight`, the samples' weights summing to 1 for a light
+/// whose `intensity` is its total).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaSample {
+    pub p: Vec3,
+    pub n: Vec3,
+    pub weight: f32,
+}
+
+/// Binds light shader `name` with `params`. `camera_from_shader` is the CTM when the
+/// `LightSource` request was read, composed with camera_from_world: `point "shader"` parameters
+/// (`from`, `to`) and their defaults are transformed by it.
+///
+/// Every light also accepts the message-passing parameters `__category` (string),
+/// `__nondiffuse`, `__nonspecular` (float), and keeps any other parameter it is given so that
+/// surfaces can read it with `lightsource()` ([`Light::param`]).
+///
+/// Errors: [`ShadeError::UnknownShader`]; parameter problems come back as warnings.
+pub fn light(
+    name: &str,
+    params: &[Param],
+    camera_from_shader: DMat4,
+) -> Result<(Light, Vec<String>), ShadeError> {
+    let kind = LightKind::from_name(name).ok_or_else(|| ShadeError::UnknownShader {
+        kind: "light",
+        name: name.to_string(),
+        known: LightKind::NAMES.join(", "),
+    })?;
+    let mut specs = kind.params();
+    specs.push(("__category", ParamValue::String(String::new())));
+    specs.push(("__nondiffuse", ParamValue::Float(0.0)));
+    specs.push(("__nonspecular", ParamValue::Float(0.0)));
+    let (params, warnings) = ShaderParams::bind(name, &specs, params, true);
+    Ok((
+        Light {
+            name: name.to_string(),
+            kind,
+            params,
+            camera_from_shader,
+            area_samples: Vec::new(),
+        },
+        warnings,
+    ))
+}
+
+impl Light {
+    /// Gives an `arealight` its geometry: each sample illuminates as Listing 9.18's
+    /// `illuminate(P, N, PI/2)` and appears as its own light in illuminance loops, its `Cl`
+    /// scaled by `weight`. Without samples an `arealight` is a point at its shader-space origin
+    /// radiating in every direction. Ignored by the other lights.
+    pub fn with_area_samples(mut self, samples: Vec<AreaSample>) -> Light {
+        self.area_samples = samples;
+        self
+    }
+
+    /// The shader name as bound.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// True for lights with no direction (`ambientlight`): they feed `ambient()` and are skipped
+    /// by illuminance loops.
+    pub fn is_ambient(&self) -> bool {
+        self.kind == LightKind::Ambient
+    }
+
+    /// `lightsource(name, result)`: the light's parameter `name`, if it has one.
+    pub fn param(&self, name: &str) -> Option<&ParamValue> {
+        self.params.get(name)
+    }
+
+    /// `__category`: comma-separated category list ("" when not given).
+    pub fn category(&self) -> &str {
+        self.params.string("__category")
+    }
+
+    /// `__nondiffuse` (0 unless given): Listing 9.10 scales the light's `diffuse()` share by
+    /// `1 - __nondiffuse`.
+    pub fn nondiffuse(&self) -> f32 {
+        self.params.float("__nondiffuse")
+    }
+
+    /// `__nonspecular` (0 unless given).
+    pub fn nonspecular(&self) -> f32 {
+        self.params.float("__nonspecular")
+    }
+
+    /// A `point "shader"` parameter in camera space.
+    pub(crate) fn point(&self, name: &str) -> Vec3 {
+        self.camera_from_shader
+            .transform_point3(self.params.vec3(name).as_dvec3())
+            .as_vec3()
+    }
+}
+
+/// One light evaluated over a grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightSamples {
+    /// No direction (feeds `ambient()` only).
+    pub ambient: bool,
+    /// `L` as the surface sees it: from the shaded point *toward* the light (not unit length:
+    /// `from - P` for local lights, a unit vector for `solar` lights).
+    pub l: Vec<Vec3>,
+    /// `Cl`; zero where the light's `illuminate`/`solar` cone excludes the point.
+    pub cl: Vec<Vec3>,
+    /// `Ol` (1 for all built-in lights).
+    pub ol: Vec<Vec3>,
+    /// False where the light's cone excludes the point (its body did not run).
+    pub lit: Vec<bool>,
+}
+
+impl LightSamples {
+    pub(crate) fn new(n: usize, ambient: bool) -> LightSamples {
+        LightSamples {
+            ambient,
+            l: vec![Vec3::ZERO; n],
+            cl: vec![Vec3::ZERO; n],
+            ol: vec![Vec3::ONE; n],
+            lit: vec![false; n],
+        }
+    }
+}
+
+/// Every light of the grid, run once (an area light appears once per geometry sample).
+pub struct LightCache<'l> {
+    pub lights: Vec<(&'l Light, LightSamples)>,
+}
+
+impl<'l> LightCache<'l> {
+    /// Runs each light once over the grid's `P` (and `dPdu`/`dPdv` for shadow footprints).
+    pub fn run(lights: &[&'l Light], grid: &ShadingGrid, env: &ShadingEnv) -> LightCache<'l> {
+        LightCache {
+            lights: lights
+                .iter()
+                .flat_map(|&light| {
+                    lights::run(light, grid, env)
+                        .into_iter()
+                        .map(move |s| (light, s))
+                })
+                .collect(),
+        }
+    }
+}

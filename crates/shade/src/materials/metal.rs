@@ -1,0 +1,52 @@
+//! `metal` (RI 3.2: `Cs * (Ka*ambient() + Ks*specular(Nf, V, roughness))`) and `roughmetal`,
+//! `MaterialRoughMetal`, Listing 9.3:
+//! `basecolor * (Ka*ambient() + Kd*diffuse(Nf) + Ks*specular(Nf, V, roughness))`.
+//!
+//! | name | type | metal | roughmetal |
+//! |---|---|---|---|
+//! | Ka | float | 1 | 1 |
+//! | Kd | float | — | 0.1 (listing: Kd < 0.1 recommended… we take the shinymetal default) |
+//! | Ks | float | 1 | 1 |
+//! | roughness | float | 0.1 | 0.2 (listing: > 0.15) |
+use super::{f, SurfaceContext};
+use crate::parameters::ParamValue;
+use glam::Vec3;
+
+pub(super) fn params(rough: bool) -> Vec<(&'static str, ParamValue)> {
+    if rough {
+        vec![
+            ("Ka", f(1.0)),
+            ("Kd", f(0.1)),
+            ("Ks", f(1.0)),
+            ("roughness", f(0.2)),
+        ]
+    } else {
+        vec![("Ka", f(1.0)), ("Ks", f(1.0)), ("roughness", f(0.1))]
+    }
+}
+
+pub(super) fn shade(ctx: &SurfaceContext, rough: bool) -> Vec<Vec3> {
+    let g = ctx.grid;
+    let p = ctx.params;
+    let (ka, kd, ks, r) = (
+        p.float_on(g, "Ka"),
+        p.float_on(g, "Kd"),
+        p.float_on(g, "Ks"),
+        p.float_on(g, "roughness"),
+    );
+    let l = ctx.lights;
+    (0..g.len())
+        .map(|i| {
+            let diffuse = if rough {
+                kd.at(i) * l.diffuse(i, ctx.nf[i])
+            } else {
+                Vec3::ZERO
+            };
+            g.cs[i]
+                * (ka.at(i) * l.ambient(i)
+                    + diffuse
+                    + ks.at(i)
+                        * l.specular(i, ctx.nf[i], ctx.v[i], r.at(i), ctx.env.specular_model))
+        })
+        .collect()
+}

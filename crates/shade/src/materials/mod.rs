@@ -1,0 +1,173 @@
+//! The surface shaders: the chapter's materials (Listings 9.1–9.13) and the standard RI 3.2
+//! surfaces, each a function from the grid and the cached lights to the unpremultiplied colour
+//! (`surface.rs` then applies `Oi = Os; Ci *= Oi` as every listing ends).
+pub mod environment;
+
+mod constant;
+mod defaultsurface;
+mod glossy;
+mod matte;
+mod metal;
+mod orennayar;
+mod plastic;
+mod shinymetal;
+mod shinyplastic;
+mod thinplastic;
+mod wardanisotropic;
+
+use crate::geometric::{faceforward, normalize_or_zero};
+use crate::light::LightCache;
+use crate::parameters::{ParamValue, ShaderParams};
+use crate::shadingenv::ShadingEnv;
+use crate::shadinggrid::ShadingGrid;
+use glam::Vec3;
+
+/// Everything a surface needs for one grid: the globals, the bound parameters, the lights run
+/// once, and the two vectors every listing starts from.
+pub(crate) struct SurfaceContext<'a> {
+    pub grid: &'a ShadingGrid,
+    pub lights: &'a LightCache<'a>,
+    pub env: &'a ShadingEnv<'a>,
+    pub params: &'a ShaderParams,
+    /// `Nf = faceforward(normalize(N), I)` (against `Ng`).
+    pub nf: Vec<Vec3>,
+    /// `V = -normalize(I)`.
+    pub v: Vec<Vec3>,
+}
+
+impl<'a> SurfaceContext<'a> {
+    pub fn new(
+        grid: &'a ShadingGrid,
+        lights: &'a LightCache<'a>,
+        env: &'a ShadingEnv<'a>,
+        params: &'a ShaderParams,
+    ) -> SurfaceContext<'a> {
+        let nf = (0..grid.len())
+            .map(|i| faceforward(normalize_or_zero(grid.n[i]), grid.i[i], grid.ng[i]))
+            .collect();
+        let v = grid.i.iter().map(|&i| -normalize_or_zero(i)).collect();
+        SurfaceContext {
+            grid,
+            lights,
+            env,
+            params,
+            nf,
+            v,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SurfaceKind {
+    Constant,
+    DefaultSurface,
+    Matte,
+    Plastic,
+    PaintedPlastic,
+    Metal,
+    RoughMetal,
+    ThinPlastic,
+    ShinyMetal,
+    ShinyPlastic,
+    OrenNayar,
+    WardAnisotropic,
+    Glossy,
+}
+
+impl SurfaceKind {
+    pub const NAMES: [&'static str; 13] = [
+        "constant",
+        "defaultsurface",
+        "matte",
+        "plastic",
+        "paintedplastic",
+        "metal",
+        "roughmetal",
+        "thinplastic",
+        "shinymetal",
+        "shinyplastic",
+        "orennayar",
+        "wardanisotropic",
+        "glossy",
+    ];
+    const KINDS: [SurfaceKind; 13] = [
+        SurfaceKind::Constant,
+        SurfaceKind::DefaultSurface,
+        SurfaceKind::Matte,
+        SurfaceKind::Plastic,
+        SurfaceKind::PaintedPlastic,
+        SurfaceKind::Metal,
+        SurfaceKind::RoughMetal,
+        SurfaceKind::ThinPlastic,
+        SurfaceKind::ShinyMetal,
+        SurfaceKind::ShinyPlastic,
+        SurfaceKind::OrenNayar,
+        SurfaceKind::WardAnisotropic,
+        SurfaceKind::Glossy,
+    ];
+
+    pub fn from_name(name: &str) -> Option<SurfaceKind> {
+        Self::NAMES
+            .iter()
+            .position(|&n| n == name)
+            .map(|k| Self::KINDS[k])
+    }
+
+    /// Parameter names and defaults (see each shader's file for the table and its source).
+    pub fn params(self) -> Vec<(&'static str, ParamValue)> {
+        match self {
+            SurfaceKind::Constant => vec![],
+            SurfaceKind::DefaultSurface => defaultsurface::params(),
+            SurfaceKind::Matte => matte::params(),
+            SurfaceKind::Plastic => plastic::params(false),
+            SurfaceKind::PaintedPlastic => plastic::params(true),
+            SurfaceKind::Metal => metal::params(false),
+            SurfaceKind::RoughMetal => metal::params(true),
+            SurfaceKind::ThinPlastic => thinplastic::params(),
+            SurfaceKind::ShinyMetal => shinymetal::params(),
+            SurfaceKind::ShinyPlastic => shinyplastic::params(),
+            SurfaceKind::OrenNayar => orennayar::params(),
+            SurfaceKind::WardAnisotropic => wardanisotropic::params(),
+            SurfaceKind::Glossy => glossy::params(),
+        }
+    }
+
+    /// The unpremultiplied surface colour at every grid point.
+    pub fn shade(self, ctx: &SurfaceContext) -> Vec<Vec3> {
+        match self {
+            SurfaceKind::Constant => constant::shade(ctx),
+            SurfaceKind::DefaultSurface => defaultsurface::shade(ctx),
+            SurfaceKind::Matte => matte::shade(ctx),
+            SurfaceKind::Plastic | SurfaceKind::PaintedPlastic => plastic::shade(ctx),
+            SurfaceKind::Metal => metal::shade(ctx, false),
+            SurfaceKind::RoughMetal => metal::shade(ctx, true),
+            SurfaceKind::ThinPlastic => thinplastic::shade(ctx),
+            SurfaceKind::ShinyMetal => shinymetal::shade(ctx),
+            SurfaceKind::ShinyPlastic => shinyplastic::shade(ctx),
+            SurfaceKind::OrenNayar => orennayar::shade(ctx),
+            SurfaceKind::WardAnisotropic => wardanisotropic::shade(ctx),
+            SurfaceKind::Glossy => glossy::shade(ctx),
+        }
+    }
+}
+
+fn f(v: f32) -> ParamValue {
+    ParamValue::Float(v)
+}
+
+fn c(v: f32) -> ParamValue {
+    ParamValue::Color(Vec3::splat(v))
+}
+
+fn s(v: &str) -> ParamValue {
+    ParamValue::String(v.to_string())
+}
+
+/// `DECLARE_DEFAULTED_ENVPARAMS` of Listing 9.7.
+fn envparams() -> [(&'static str, ParamValue); 3] {
+    [
+        ("envname", s("")),
+        ("envspace", s("world")),
+        ("envrad", f(100.0)),
+    ]
+}

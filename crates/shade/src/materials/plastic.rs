@@ -1,0 +1,58 @@
+//! `plastic` and `paintedplastic` (RI 3.2) through `MaterialPlastic`, Listing 9.1, with the RI
+//! shaders' `specularcolor`:
+//! `Ct * (Ka*ambient() + Kd*diffuse(Nf)) + specularcolor * Ks*specular(Nf, V, roughness)`,
+//! `Ct = Cs` (plastic) or `Cs * texture(texturename)` (paintedplastic, when named).
+//!
+//! | name | type | default |
+//! |---|---|---|
+//! | Ka | float | 1 |
+//! | Kd | float | 0.5 |
+//! | Ks | float | 0.5 |
+//! | roughness | float | 0.1 |
+//! | specularcolor | color | 1 |
+//! | texturename | string | "" (paintedplastic) |
+use super::environment::texture_colors;
+use super::{c, f, s, SurfaceContext};
+use crate::parameters::ParamValue;
+use glam::Vec3;
+
+pub(super) fn params(painted: bool) -> Vec<(&'static str, ParamValue)> {
+    let mut p = vec![
+        ("Ka", f(1.0)),
+        ("Kd", f(0.5)),
+        ("Ks", f(0.5)),
+        ("roughness", f(0.1)),
+        ("specularcolor", c(1.0)),
+    ];
+    if painted {
+        p.push(("texturename", s("")));
+    }
+    p
+}
+
+pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+    let g = ctx.grid;
+    let p = ctx.params;
+    let (ka, kd, ks, rough) = (
+        p.float_on(g, "Ka"),
+        p.float_on(g, "Kd"),
+        p.float_on(g, "Ks"),
+        p.float_on(g, "roughness"),
+    );
+    let spec = p.vec3_on(g, "specularcolor");
+    let name = p.string("texturename");
+    let tex = (!name.is_empty()).then(|| texture_colors(ctx.env, g, name, 3, 0.0));
+    (0..g.len())
+        .map(|i| {
+            let ct = match &tex {
+                Some(t) => g.cs[i] * Vec3::new(t[i][0], t[i][1], t[i][2]),
+                None => g.cs[i],
+            };
+            let l = ctx.lights;
+            ct * (ka.at(i) * l.ambient(i) + kd.at(i) * l.diffuse(i, ctx.nf[i]))
+                + spec.at(i)
+                    * ks.at(i)
+                    * l.specular(i, ctx.nf[i], ctx.v[i], rough.at(i), ctx.env.specular_model)
+        })
+        .collect()
+}

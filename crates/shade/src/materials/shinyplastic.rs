@@ -1,0 +1,74 @@
+//! `shinyplastic`, Listing 9.9 (`MaterialShinyPlastic`), with the ERRATA's `fkt` argument:
+//! `fresnel(IN, Nf, 1/ior, fkr, fkt, R, T); fkt = 1-fkr;`
+//! `fkt * basecolor * (Ka*ambient() + Kd*diffuse(Nf)) + (Ks*fkr) * specular(Nf, V, roughness)
+//!  + SampleEnvironment(P, R, fkr*Kr, blur, ENVPARAMS)`.
+//!
+//! | name | type | default |
+//! |---|---|---|
+//! | Ka | float | 1 |
+//! | Kd | float | 0.5 |
+//! | Ks | float | 0.5 |
+//! | roughness | float | 0.1 |
+//! | Kr | float | 1 |
+//! | blur | float | 0 |
+//! | ior | float | 1.5 |
+//! | envname | string | "" |
+//! | envspace | string | "world" |
+//! | envrad | float | 100 |
+use super::environment::{sample_environment, EnvParams};
+use super::{envparams, f, SurfaceContext};
+use crate::geometric::fresnel;
+use crate::parameters::ParamValue;
+use glam::Vec3;
+
+pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
+    let mut p = vec![
+        ("Ka", f(1.0)),
+        ("Kd", f(0.5)),
+        ("Ks", f(0.5)),
+        ("roughness", f(0.1)),
+        ("Kr", f(1.0)),
+        ("blur", f(0.0)),
+        ("ior", f(1.5)),
+    ];
+    p.extend(envparams());
+    p
+}
+
+pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+    let g = ctx.grid;
+    let p = ctx.params;
+    let n = g.len();
+    let (ka, kd, ks, r, kr, blur, ior) = (
+        p.float_on(g, "Ka"),
+        p.float_on(g, "Kd"),
+        p.float_on(g, "Ks"),
+        p.float_on(g, "roughness"),
+        p.float_on(g, "Kr"),
+        p.float_on(g, "blur"),
+        p.float_on(g, "ior"),
+    );
+    let fr: Vec<_> = (0..n)
+        .map(|i| fresnel(-ctx.v[i], ctx.nf[i], 1.0 / ior.at(i)))
+        .collect();
+    let refl: Vec<Vec3> = fr.iter().map(|f| f.r).collect();
+    let kr_v: Vec<f32> = (0..n).map(|i| fr[i].kr * kr.at(i)).collect();
+    let blur_v: Vec<f32> = (0..n).map(|i| blur.at(i)).collect();
+    let params = EnvParams {
+        envname: p.string("envname"),
+        envspace: p.string("envspace"),
+        envrad: p.float("envrad"),
+    };
+    let env_term = sample_environment(ctx.env, g, &refl, &kr_v, &blur_v, params);
+    let l = ctx.lights;
+    (0..n)
+        .map(|i| {
+            let nf = ctx.nf[i];
+            let fkr = fr[i].kr;
+            let fkt = 1.0 - fkr;
+            fkt * g.cs[i] * (ka.at(i) * l.ambient(i) + kd.at(i) * l.diffuse(i, nf))
+                + (ks.at(i) * fkr) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model)
+                + env_term[i]
+        })
+        .collect()
+}

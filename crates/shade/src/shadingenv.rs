@@ -1,0 +1,153 @@
+//! What shaders need from the rest of the renderer besides the grid: spaces, options, textures,
+//! and a place to put warnings.
+use crate::texturelookup::TextureLookup;
+use glam::{DMat4, Vec3};
+use std::collections::{HashMap, HashSet};
+use std::sync::Mutex;
+
+/// Which formula `specular()` uses (`Option "shading" "string specularmodel"`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SpecularModel {
+    /// Blinn-Phong `max(0, N·H)^(1/roughness)`: the RI Specification and Listing 9.10.
+    #[default]
+    Blinn,
+    /// `max(0, N·H)^(8/roughness)`: the exponent BMRT and Aqsis use to emulate PRMan, for scenes
+    /// tuned on those renderers (`"prman"`).
+    PrMan,
+}
+
+impl SpecularModel {
+    /// Parses the option value: `"blinn"`/`"rispec"` or `"prman"`/`"bmrt"`/`"aqsis"`.
+    pub fn from_option(value: &str) -> Option<SpecularModel> {
+        match value.to_ascii_lowercase().as_str() {
+            "blinn" | "blinnphong" | "rispec" | "spec" => Some(SpecularModel::Blinn),
+            "prman" | "bmrt" | "aqsis" => Some(SpecularModel::PrMan),
+            _ => None,
+        }
+    }
+
+    /// The Blinn-Phong exponent for `roughness`.
+    pub fn exponent(self, roughness: f32) -> f32 {
+        match self {
+            SpecularModel::Blinn => 1.0 / roughness,
+            SpecularModel::PrMan => 8.0 / roughness,
+        }
+    }
+}
+
+/// Where shading warnings go (missing maps, unknown spaces…). Implementations de-duplicate.
+pub trait WarningSink: Send + Sync {
+    fn warn(&self, message: &str);
+}
+
+/// A [`WarningSink`] that keeps each distinct message once, in order of first occurrence.
+#[derive(Debug, Default)]
+pub struct WarnOnce {
+    seen: Mutex<(HashSet<String>, Vec<String>)>,
+}
+
+impl WarnOnce {
+    pub fn new() -> WarnOnce {
+        WarnOnce::default()
+    }
+
+    /// The distinct messages so far, first occurrence first.
+    pub fn messages(&self) -> Vec<String> {
+        self.seen.lock().map(|g| g.1.clone()).unwrap_or_default()
+    }
+}
+
+impl WarningSink for WarnOnce {
+    fn warn(&self, message: &str) {
+        if let Ok(mut g) = self.seen.lock() {
+            if g.0.insert(message.to_string()) {
+                g.1.push(message.to_string());
+            }
+        }
+    }
+}
+
+/// The per-grid environment of a shader. Shading happens in camera ("current") space; every
+/// matrix here maps *into* or *out of* camera space, in `f64` (DESIGN.md “Numbers and spaces”).
+#[derive(Clone, Copy)]
+pub struct ShadingEnv<'a> {
+    pub camera_from_world: DMat4,
+    /// `camera_from_object` of the primitive being shaded ("object" space).
+    pub camera_from_object: DMat4,
+    /// `camera_from_shader` of the surface/displacement shader ("shader" space: the CTM when the
+    /// `Surface`/`Displacement` request was read).
+    pub camera_from_shader: DMat4,
+    /// Named coordinate systems (`CoordinateSystem`), each as `camera_from_X`.
+    pub coordinate_systems: Option<&'a HashMap<String, DMat4>>,
+    /// Projective maps from camera space (applied with the homogeneous divide).
+    pub screen_from_camera: DMat4,
+    pub ndc_from_camera: DMat4,
+    pub raster_from_camera: DMat4,
+    pub specular_model: SpecularModel,
+    pub textures: Option<&'a dyn TextureLookup>,
+    pub warnings: Option<&'a dyn WarningSink>,
+}
+
+impl<'a> ShadingEnv<'a> {
+    /// An environment with every space equal to camera space, Blinn-Phong `specular()`, no
+    /// textures and no warning sink. Set the public fields that the caller knows.
+    pub fn new() -> ShadingEnv<'a> {
+        ShadingEnv {
+            camera_from_world: DMat4::IDENTITY,
+            camera_from_object: DMat4::IDENTITY,
+            camera_from_shader: DMat4::IDENTITY,
+            coordinate_systems: None,
+            screen_from_camera: DMat4::IDENTITY,
+            ndc_from_camera: DMat4::IDENTITY,
+            raster_from_camera: DMat4::IDENTITY,
+            specular_model: SpecularModel::Blinn,
+            textures: None,
+            warnings: None,
+        }
+    }
+
+    /// Reports a warning to the sink, if any.
+    pub fn warn(&self, message: &str) {
+        if let Some(w) = self.warnings {
+            w.warn(message);
+        }
+    }
+
+    /// `camera_from_X` for an affine named space: `current`, `camera`, `world`, `object`,
+    /// `shader` or a `CoordinateSystem` name. Projective spaces (`screen`, `raster`, `NDC`) are
+    /// handled by [`ShadingEnv::transform_point`]; `None` for an unknown name.
+    pub fn camera_from(&self, space: &str) -> Option<DMat4> {
+        match space {
+            "current" | "camera" => Some(DMat4::IDENTITY),
+            "world" => Some(self.camera_from_world),
+            "object" => Some(self.camera_from_object),
+            "shader" => Some(self.camera_from_shader),
+            _ => self.coordinate_systems.and_then(|m| m.get(space)).copied(),
+        }
+    }
+
+    /// `transform(space, P)`: a camera-space point into `space` (projective for `screen`,
+    /// `raster`, `NDC`). `None` if the space is unknown.
+    pub fn transform_point(&self, space: &str, p: Vec3) -> Option<Vec3> {
+        let p = p.as_dvec3();
+        let q = match space {
+            "screen" => self.screen_from_camera.project_point3(p),
+            "raster" => self.raster_from_camera.project_point3(p),
+            "NDC" => self.ndc_from_camera.project_point3(p),
+            _ => self.camera_from(space)?.inverse().transform_point3(p),
+        };
+        Some(q.as_vec3())
+    }
+
+    /// `vtransform(space, V)`: a camera-space direction into an affine `space`.
+    pub fn transform_vector(&self, space: &str, v: Vec3) -> Option<Vec3> {
+        let m = self.camera_from(space)?.inverse();
+        Some(m.transform_vector3(v.as_dvec3()).as_vec3())
+    }
+}
+
+impl Default for ShadingEnv<'_> {
+    fn default() -> Self {
+        ShadingEnv::new()
+    }
+}
