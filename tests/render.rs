@@ -15,7 +15,10 @@ fn frames(rib: &str, crop: Option<[f32; 4]>) -> Vec<Frame> {
     }
     ri.finish();
     let diags = ri.drain_diagnostics();
-    let errors: Vec<_> = diags.iter().filter(|d| d.severity == Severity::Error).collect();
+    let errors: Vec<_> = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .collect();
     assert!(errors.is_empty(), "{errors:?}");
     ri.take_frames()
 }
@@ -43,7 +46,10 @@ fn assert_area(body: &str, object_area: f64, tolerance: f64) {
     let expected = object_area * 50.0 * 50.0;
     let got = alpha_sum(&r);
     let rel = (got - expected).abs() / expected;
-    assert!(rel < tolerance, "{body}: area {got} px, expected {expected} (rel {rel})");
+    assert!(
+        rel < tolerance,
+        "{body}: area {got} px, expected {expected} (rel {rel})"
+    );
 }
 
 #[test]
@@ -55,7 +61,11 @@ fn orthographic_unit_sphere_covers_pi_r2_pixels() {
 fn disk_square_polygon_and_patches_match_exact_areas() {
     assert_area("Disk 0 1.2 360", PI * 1.44, 1e-3);
     assert_area("Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]", 4.0, 1e-3);
-    assert_area("Patch \"bilinear\" \"P\" [-1 -0.5 0  1 -0.5 0  -1 0.5 0  1 0.5 0]", 2.0, 1e-3);
+    assert_area(
+        "Patch \"bilinear\" \"P\" [-1 -0.5 0  1 -0.5 0  -1 0.5 0  1 0.5 0]",
+        2.0,
+        1e-3,
+    );
     // A flat bicubic Bezier patch with evenly spaced control points spans [-1.5, 1.5]².
     let mut p = String::new();
     for j in 0..4 {
@@ -91,11 +101,21 @@ fn one_sided_disk_visible(prefix: &str) -> bool {
 #[test]
 fn scale_minus_one_and_orientation_flip_normals() {
     let plain = one_sided_disk_visible("");
-    assert_ne!(plain, one_sided_disk_visible("Scale -1 1 1"), "mirroring flips the normal");
+    assert_ne!(
+        plain,
+        one_sided_disk_visible("Scale -1 1 1"),
+        "mirroring flips the normal"
+    );
     assert_ne!(plain, one_sided_disk_visible("ReverseOrientation"));
-    assert_eq!(plain, one_sided_disk_visible("ReverseOrientation ReverseOrientation"));
+    assert_eq!(
+        plain,
+        one_sided_disk_visible("ReverseOrientation ReverseOrientation")
+    );
     // "outside" after a mirror follows the new handedness: the normal is restored.
-    assert_eq!(plain, one_sided_disk_visible("Scale -1 1 1 Orientation \"outside\""));
+    assert_eq!(
+        plain,
+        one_sided_disk_visible("Scale -1 1 1 Orientation \"outside\"")
+    );
     assert_ne!(plain, one_sided_disk_visible("Orientation \"rh\""));
 }
 
@@ -113,7 +133,10 @@ fn bits(r: &Rendered) -> Vec<u32> {
 fn one_and_two_threads_give_identical_bits() {
     let f = frames(PERSPECTIVE_SCENE, None);
     let run = |n| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap();
         pool.install(|| render(&f[0], &RenderSettings::default()))
     };
     let (a, b) = (run(1), run(2));
@@ -123,10 +146,21 @@ fn one_and_two_threads_give_identical_bits() {
 
 #[test]
 fn four_crop_windows_tile_the_full_image_bit_for_bit() {
-    let full = render(&frames(PERSPECTIVE_SCENE, None)[0], &RenderSettings::default());
+    let full = render(
+        &frames(PERSPECTIVE_SCENE, None)[0],
+        &RenderSettings::default(),
+    );
     let mut tiled = vec![0.0f32; full.rgba.len()];
-    for crop in [[0.0, 0.5, 0.0, 0.5], [0.5, 1.0, 0.0, 0.5], [0.0, 0.5, 0.5, 1.0], [0.5, 1.0, 0.5, 1.0]] {
-        let r = render(&frames(PERSPECTIVE_SCENE, Some(crop))[0], &RenderSettings::default());
+    for crop in [
+        [0.0, 0.5, 0.0, 0.5],
+        [0.5, 1.0, 0.0, 0.5],
+        [0.0, 0.5, 0.5, 1.0],
+        [0.5, 1.0, 0.5, 1.0],
+    ] {
+        let r = render(
+            &frames(PERSPECTIVE_SCENE, Some(crop))[0],
+            &RenderSettings::default(),
+        );
         for y in 0..r.height {
             for x in 0..r.width {
                 let src = ((y * r.width + x) * 4) as usize;
@@ -181,7 +215,9 @@ fn corpus_dir() -> Option<std::path::PathBuf> {
 }
 
 fn rib_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
-    let Ok(rd) = std::fs::read_dir(dir) else { return };
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
     for e in rd.flatten() {
         let p = e.path();
         if p.is_dir() {

@@ -11,7 +11,10 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 #[derive(Parser)]
-#[command(name = "render", about = "Render RenderMan RIB files with the Illume REYES hider")]
+#[command(
+    name = "render",
+    about = "Render RenderMan RIB files with the Illume REYES hider"
+)]
 struct Args {
     /// No progress bar.
     #[arg(short)]
@@ -177,7 +180,10 @@ fn render_frame(
     for result in illume_reyes::write_displays(frame, &rendered) {
         match result {
             Ok(w) if w.framebuffer => {
-                eprintln!("render: framebuffer display written to {}", w.path.display())
+                eprintln!(
+                    "render: framebuffer display written to {}",
+                    w.path.display()
+                )
             }
             Ok(_) => {}
             Err(e) => {
@@ -189,7 +195,10 @@ fn render_frame(
     let write_seconds = t.elapsed().as_secs_f64();
     if stats {
         let s = &rendered.stats;
-        eprintln!("render: stats for frame {}", frame.number.map_or("-".into(), |n| n.to_string()));
+        eprintln!(
+            "render: stats for frame {}",
+            frame.number.map_or("-".into(), |n| n.to_string())
+        );
         eprintln!("  time (s)  parse {parse_seconds:.3}  split {:.3}  dice {:.3}*  shade {:.3}*  sample {:.3}*  filter {:.3}*  write {write_seconds:.3}  render wall {render_seconds:.3}", s.split_seconds, s.dice_seconds, s.shade_seconds, s.sample_seconds, s.filter_seconds);
         eprintln!("            (* CPU seconds summed over threads)");
         eprintln!(
@@ -197,7 +206,10 @@ fn render_frame(
             s.primitives, s.pieces, s.grids, s.micropolygons, s.samples, s.culled_pieces, s.occluded_grids
         );
         if render_seconds > 0.0 {
-            eprintln!("  rate      {:.0} micropolygons/s", s.micropolygons as f64 / render_seconds);
+            eprintln!(
+                "  rate      {:.0} micropolygons/s",
+                s.micropolygons as f64 / render_seconds
+            );
         }
         if let Some(kb) = peak_memory_kb() {
             eprintln!("  memory    peak {:.1} MB (VmHWM)", kb as f64 / 1024.0);

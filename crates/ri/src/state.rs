@@ -583,14 +583,12 @@ impl Ri {
                 self.diagnostics
                     .warn(span, &name, "not supported yet (ignored)");
             }
-            ColorSamples { n_rgb, .. } => {
-                if n_rgb.len() != 9 {
-                    self.diagnostics.warn(
-                        span,
-                        &name,
-                        "only 3 RGB color samples are supported (ignored)",
-                    );
-                }
+            ColorSamples { n_rgb, .. } if n_rgb.len() != 9 => {
+                self.diagnostics.warn(
+                    span,
+                    &name,
+                    "only 3 RGB color samples are supported (ignored)",
+                );
             }
             PixelVariance(v) => o.pixel_variance = v,
             PixelSamples { x, y } => {
