@@ -139,6 +139,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let grids: Vec<OnceLock<Option<Arc<ShadedGrid>>>> =
         (0..pieces.len()).map(|_| OnceLock::new()).collect();
     let counters = Counters::default();
+    let bound_lights = crate::shading::bind_lights(&frame.lights);
     let done = AtomicUsize::new(0);
     let total = nbx * nby;
     let frame_no = frame.number.unwrap_or(0);
@@ -157,6 +158,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
                 &pieces,
                 &grids,
                 &lists[b],
+                &bound_lights,
                 [px0, px1, py0, py1],
                 &filter,
                 spp,
@@ -220,7 +222,12 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     }
 }
 
-fn dice_and_shade(frame: &Frame, piece: &Piece, counters: &Counters) -> Option<Arc<ShadedGrid>> {
+fn dice_and_shade(
+    frame: &Frame,
+    piece: &Piece,
+    bound_lights: &[Option<illume_shade::Light>],
+    counters: &Counters,
+) -> Option<Arc<ShadedGrid>> {
     let t = Instant::now();
     let grid = piece.prim.get().dice(piece.nu, piece.nv);
     counters.dice_ns.fetch_add(ns(t), Relaxed);
@@ -231,7 +238,24 @@ fn dice_and_shade(frame: &Frame, piece: &Piece, counters: &Counters) -> Option<A
     let a = &piece.attrs;
     // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
     let flip = if a.orientation_rh { -1.0 } else { 1.0 };
-    let shaded = shade_grid(&grid, a, &frame.lights, flip);
+    let env = illume_shade::ShadingEnv {
+        camera_from_world: frame.camera.camera_from_world,
+        specular_model: if frame.options.specular_model == "prman" {
+            illume_shade::SpecularModel::PrMan
+        } else {
+            illume_shade::SpecularModel::Blinn
+        },
+        ..illume_shade::ShadingEnv::new()
+    };
+    let shaded = shade_grid(
+        &grid,
+        a,
+        &frame.lights,
+        bound_lights,
+        flip,
+        !frame.camera.is_perspective(),
+        &env,
+    );
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;
     let pos: Vec<Vec3> = grid
@@ -279,6 +303,7 @@ fn render_bucket(
     pieces: &[Piece],
     grids: &[OnceLock<Option<Arc<ShadedGrid>>>],
     list: &[usize],
+    bound_lights: &[Option<illume_shade::Light>],
     [px0, px1, py0, py1]: [u32; 4],
     filter: &PixelFilter,
     spp: [u32; 2],
@@ -318,7 +343,7 @@ fn render_bucket(
             continue;
         }
         let t = Instant::now();
-        let grid = grids[id].get_or_init(|| dice_and_shade(frame, piece, counters));
+        let grid = grids[id].get_or_init(|| dice_and_shade(frame, piece, bound_lights, counters));
         shade_elapsed += ns(t);
         let Some(g) = grid else { continue };
         for j in 0..g.nv - 1 {

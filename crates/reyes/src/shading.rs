@@ -15,7 +15,80 @@ fn v3(a: [f32; 3]) -> Vec3 {
     Vec3::from(a)
 }
 
-pub(crate) fn shade_grid(grid: &Grid, attrs: &Attributes, lights: &[Light], flip: f32) -> Shaded {
+/// The frame's lights bound once per frame for `illume-shade` (`None` where a light shader is
+/// unknown to it: that light is skipped, as DESIGN.md says).
+pub(crate) fn bind_lights(lights: &[Light]) -> Vec<Option<illume_shade::Light>> {
+    lights
+        .iter()
+        .map(|l| {
+            illume_shade::light(
+                &l.shader.name,
+                &l.shader.params,
+                l.shader.camera_from_shader,
+            )
+            .ok()
+            .map(|(light, _)| light)
+        })
+        .collect()
+}
+
+/// Shades with `illume-shade` when it knows the surface; `None` otherwise.
+fn shade_with_library(
+    grid: &Grid,
+    attrs: &Attributes,
+    bound: &[Option<illume_shade::Light>],
+    flip: f32,
+    orthographic: bool,
+    env: &illume_shade::ShadingEnv,
+) -> Option<Shaded> {
+    let surface = attrs.surface.as_deref()?;
+    let (shader, _) = illume_shade::surface(&surface.name, &surface.params).ok()?;
+    let n = grid.len();
+    let mut g = illume_shade::ShadingGrid::new(grid.nu, grid.nv);
+    g.p.clone_from(&grid.p);
+    let user_n = grid.n != grid.ng;
+    g.ng = grid.ng.iter().map(|v| *v * flip).collect();
+    g.n = if user_n { grid.n.clone() } else { g.ng.clone() };
+    g.dpdu.clone_from(&grid.dpdu);
+    g.dpdv.clone_from(&grid.dpdv);
+    g.s.clone_from(&grid.s);
+    g.t.clone_from(&grid.t);
+    g.u.clone_from(&grid.u);
+    g.v.clone_from(&grid.v);
+    g.du = grid.du;
+    g.dv = grid.dv;
+    g.cs = grid.cs.clone().unwrap_or_else(|| vec![v3(attrs.color); n]);
+    g.os = grid
+        .os
+        .clone()
+        .unwrap_or_else(|| vec![v3(attrs.opacity); n]);
+    for var in &grid.vars {
+        g.set_var(&var.name, var.components, var.data.clone());
+    }
+    g.set_incident_from_p(orthographic);
+    let lights: Vec<&illume_shade::Light> = attrs
+        .lights
+        .iter()
+        .filter_map(|&i| bound.get(i).and_then(Option::as_ref))
+        .collect();
+    let mut env = env.clone();
+    env.camera_from_shader = surface.camera_from_shader;
+    illume_shade::shade_surface(&shader, &mut g, &lights, &env);
+    Some(Shaded { ci: g.ci, oi: g.oi })
+}
+
+pub(crate) fn shade_grid(
+    grid: &Grid,
+    attrs: &Attributes,
+    lights: &[Light],
+    bound: &[Option<illume_shade::Light>],
+    flip: f32,
+    orthographic: bool,
+    env: &illume_shade::ShadingEnv,
+) -> Shaded {
+    if let Some(s) = shade_with_library(grid, attrs, bound, flip, orthographic, env) {
+        return s;
+    }
     let n = grid.len();
     let cs: Vec<Vec3> = grid.cs.clone().unwrap_or_else(|| vec![v3(attrs.color); n]);
     let os: Vec<Vec3> = grid
