@@ -71,7 +71,7 @@ fn shade_with_library(
         .iter()
         .filter_map(|&i| bound.get(i).and_then(Option::as_ref))
         .collect();
-    let mut env = env.clone();
+    let mut env = *env;
     env.camera_from_shader = surface.camera_from_shader;
     illume_shade::shade_surface(&shader, &mut g, &lights, &env);
     Some(Shaded { ci: g.ci, oi: g.oi })
