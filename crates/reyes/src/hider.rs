@@ -4,7 +4,7 @@
 use crate::filter::PixelFilter;
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
 use crate::sampling::sample_position;
-use crate::shading::shade_grid;
+use crate::shading::FrameShading;
 use crate::{RenderSettings, Rendered, Stats};
 use glam::Vec3;
 use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
@@ -144,6 +144,8 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let frame_no = frame.number.unwrap_or(0);
     let spp = opts.pixel_samples;
 
+    let (shading, shader_warnings) = FrameShading::new(frame, settings.textures);
+    warnings.extend(shader_warnings);
     let buckets: Vec<(Vec<[f32; 4]>, Vec<f32>)> = (0..total)
         .into_par_iter()
         .map(|b| {
@@ -154,6 +156,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
             let py1 = (py0 + bh).min(cy1);
             let out = render_bucket(
                 frame,
+                &shading,
                 &pieces,
                 &grids,
                 &lists[b],
@@ -207,7 +210,21 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
         shade_seconds: counters.shade_ns.load(Relaxed) as f64 * 1e-9,
         sample_seconds: counters.sample_ns.load(Relaxed) as f64 * 1e-9,
         filter_seconds: counters.filter_ns.load(Relaxed) as f64 * 1e-9,
+        nonfinite: shading.nonfinite.load(Relaxed),
     };
+    // Shading problems found while rendering (missing maps, unknown spaces), once each.
+    warnings.extend(
+        shading
+            .warnings
+            .messages()
+            .into_iter()
+            .map(|message| Diagnostic {
+                severity: Severity::Warning,
+                span: illume_rib::Span::synthetic(),
+                request: None,
+                message,
+            }),
+    );
     Rendered {
         x0: cx0,
         y0: cy0,
@@ -220,7 +237,12 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     }
 }
 
-fn dice_and_shade(frame: &Frame, piece: &Piece, counters: &Counters) -> Option<Arc<ShadedGrid>> {
+fn dice_and_shade(
+    frame: &Frame,
+    shading: &FrameShading,
+    piece: &Piece,
+    counters: &Counters,
+) -> Option<Arc<ShadedGrid>> {
     let t = Instant::now();
     let grid = piece.prim.get().dice(piece.nu, piece.nv);
     counters.dice_ns.fetch_add(ns(t), Relaxed);
@@ -231,7 +253,7 @@ fn dice_and_shade(frame: &Frame, piece: &Piece, counters: &Counters) -> Option<A
     let a = &piece.attrs;
     // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
     let flip = if a.orientation_rh { -1.0 } else { 1.0 };
-    let shaded = shade_grid(&grid, a, &frame.lights, flip);
+    let shaded = shading.shade_grid(&grid, a, flip);
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;
     let pos: Vec<Vec3> = grid
@@ -276,6 +298,7 @@ fn dice_and_shade(frame: &Frame, piece: &Piece, counters: &Counters) -> Option<A
 #[allow(clippy::too_many_arguments)]
 fn render_bucket(
     frame: &Frame,
+    shading: &FrameShading,
     pieces: &[Piece],
     grids: &[OnceLock<Option<Arc<ShadedGrid>>>],
     list: &[usize],
@@ -318,7 +341,7 @@ fn render_bucket(
             continue;
         }
         let t = Instant::now();
-        let grid = grids[id].get_or_init(|| dice_and_shade(frame, piece, counters));
+        let grid = grids[id].get_or_init(|| dice_and_shade(frame, shading, piece, counters));
         shade_elapsed += ns(t);
         let Some(g) = grid else { continue };
         for j in 0..g.nv - 1 {
