@@ -164,6 +164,7 @@ fn render_frame(
     };
     let settings = illume_reyes::RenderSettings {
         progress: Some(&progress),
+        ..Default::default()
     };
     let t = Instant::now();
     let rendered = pool.install(|| illume_reyes::render(frame, &settings));
@@ -202,8 +203,8 @@ fn render_frame(
         eprintln!("  time (s)  parse {parse_seconds:.3}  split {:.3}  dice {:.3}*  shade {:.3}*  sample {:.3}*  filter {:.3}*  write {write_seconds:.3}  render wall {render_seconds:.3}", s.split_seconds, s.dice_seconds, s.shade_seconds, s.sample_seconds, s.filter_seconds);
         eprintln!("            (* CPU seconds summed over threads)");
         eprintln!(
-            "  counts    primitives {}  pieces {}  grids {}  micropolygons {}  samples {}  culled pieces {}  occluded grids {}",
-            s.primitives, s.pieces, s.grids, s.micropolygons, s.samples, s.culled_pieces, s.occluded_grids
+            "  counts    primitives {}  pieces {}  grids {}  micropolygons {}  samples {}  culled pieces {}  occluded grids {}  non-finite shaded points {}",
+            s.primitives, s.pieces, s.grids, s.micropolygons, s.samples, s.culled_pieces, s.occluded_grids, s.nonfinite
         );
         if render_seconds > 0.0 {
             eprintln!(

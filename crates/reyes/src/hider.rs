@@ -4,7 +4,7 @@
 use crate::filter::PixelFilter;
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
 use crate::sampling::sample_position;
-use crate::shading::shade_grid;
+use crate::shading::FrameShading;
 use crate::{RenderSettings, Rendered, Stats};
 use glam::Vec3;
 use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
@@ -172,12 +172,13 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
         })
         .collect();
     let counters = Counters::default();
-    let bound_lights = crate::shading::bind_lights(&frame.lights);
     let done = AtomicUsize::new(0);
     let total = nbx * nby;
     let frame_no = frame.number.unwrap_or(0);
     let spp = opts.pixel_samples;
 
+    let (shading, shader_warnings) = FrameShading::new(frame, settings.textures);
+    warnings.extend(shader_warnings);
     let buckets: Vec<(Vec<[f32; 4]>, Vec<f32>)> = (0..total)
         .into_par_iter()
         .map(|b| {
@@ -188,10 +189,10 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
             let py1 = (py0 + bh).min(cy1);
             let out = render_bucket(
                 frame,
+                &shading,
                 &pieces,
                 &grids,
                 &lists[b],
-                &bound_lights,
                 [px0, px1, py0, py1],
                 &filter,
                 spp,
@@ -242,7 +243,21 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
         shade_seconds: counters.shade_ns.load(Relaxed) as f64 * 1e-9,
         sample_seconds: counters.sample_ns.load(Relaxed) as f64 * 1e-9,
         filter_seconds: counters.filter_ns.load(Relaxed) as f64 * 1e-9,
+        nonfinite: shading.nonfinite.load(Relaxed),
     };
+    // Shading problems found while rendering (missing maps, unknown spaces), once each.
+    warnings.extend(
+        shading
+            .warnings
+            .messages()
+            .into_iter()
+            .map(|message| Diagnostic {
+                severity: Severity::Warning,
+                span: illume_rib::Span::synthetic(),
+                request: None,
+                message,
+            }),
+    );
     Rendered {
         x0: cx0,
         y0: cy0,
@@ -257,8 +272,8 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
 
 fn dice_and_shade(
     frame: &Frame,
+    shading: &FrameShading,
     piece: &Piece,
-    bound_lights: &[Option<illume_shade::Light>],
     counters: &Counters,
 ) -> Option<Arc<ShadedGrid>> {
     let t = Instant::now();
@@ -271,24 +286,7 @@ fn dice_and_shade(
     let a = &piece.attrs;
     // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
     let flip = if a.orientation_rh { -1.0 } else { 1.0 };
-    let env = illume_shade::ShadingEnv {
-        camera_from_world: frame.camera.camera_from_world,
-        specular_model: if frame.options.specular_model == "prman" {
-            illume_shade::SpecularModel::PrMan
-        } else {
-            illume_shade::SpecularModel::Blinn
-        },
-        ..illume_shade::ShadingEnv::new()
-    };
-    let shaded = shade_grid(
-        &grid,
-        a,
-        &frame.lights,
-        bound_lights,
-        flip,
-        !frame.camera.is_perspective(),
-        &env,
-    );
+    let shaded = shading.shade_grid(&grid, a, flip);
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;
     let pos: Vec<Vec3> = grid
@@ -333,10 +331,10 @@ fn dice_and_shade(
 #[allow(clippy::too_many_arguments)]
 fn render_bucket(
     frame: &Frame,
+    shading: &FrameShading,
     pieces: &[Piece],
     grids: &[GridSlot],
     list: &[usize],
-    bound_lights: &[Option<illume_shade::Light>],
     [px0, px1, py0, py1]: [u32; 4],
     filter: &PixelFilter,
     spp: [u32; 2],
@@ -376,7 +374,7 @@ fn render_bucket(
             continue;
         }
         let t = Instant::now();
-        let grid = grids[id].get(|| dice_and_shade(frame, piece, bound_lights, counters));
+        let grid = grids[id].get(|| dice_and_shade(frame, shading, piece, counters));
         shade_elapsed += ns(t);
         let Some(g) = grid.as_deref() else { continue };
         for j in 0..g.nv - 1 {

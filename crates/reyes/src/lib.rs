@@ -21,6 +21,8 @@ use illume_ri::{Diagnostic, Frame};
 pub struct RenderSettings<'a> {
     /// Called after each bucket with (buckets done, bucket count).
     pub progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
+    /// The texture system shaders look maps up in (`None`: every lookup is a missing map).
+    pub textures: Option<&'a dyn illume_shade::TextureLookup>,
 }
 
 /// Counts and per-stage times (CPU seconds summed over threads, except `split_seconds`).
@@ -38,6 +40,8 @@ pub struct Stats {
     pub shade_seconds: f64,
     pub sample_seconds: f64,
     pub filter_seconds: f64,
+    /// Shaded points whose colour came out NaN/Inf and was clamped (reported by `--stats`).
+    pub nonfinite: u64,
 }
 
 /// The filtered, exposed float image of the crop window, plus per-pixel depth.

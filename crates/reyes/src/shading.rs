@@ -1,187 +1,249 @@
-//! Placeholder grid shading behind a small seam (`shade_grid`), until the hider calls
-//! `illume-shade`: `defaultsurface` without a Surface, `constant`, `null` (no shading, for depth
-//! passes), and a Lambert + Blinn "plastic" for every other surface, lit by the frame's
-//! ambient/distant/point/spot lights or, with none, by one distant light from the camera.
-use glam::Vec3;
+//! Grid shading through `illume-shade`: the frame's shaders are bound once (parameters parsed,
+//! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
+//! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
+use glam::{DMat4, DVec4, Vec3};
 use illume_geom::Grid;
-use illume_ri::{paramlist, Attributes, Light};
+use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
+use illume_shade::{
+    shade_surface, ShadingEnv, ShadingGrid, SpecularModel, Surface, TextureLookup, WarnOnce,
+};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::sync::Arc;
 
 pub(crate) struct Shaded {
     pub ci: Vec<Vec3>,
     pub oi: Vec<Vec3>,
 }
 
-fn v3(a: [f32; 3]) -> Vec3 {
-    Vec3::from(a)
-}
+/// A bound surface, or `None` for `Surface "null"`.
+type BoundSurface = Option<Arc<Surface>>;
 
-/// The frame's lights bound once per frame for `illume-shade` (`None` where a light shader is
-/// unknown to it: that light is skipped, as DESIGN.md says).
-pub(crate) fn bind_lights(lights: &[Light]) -> Vec<Option<illume_shade::Light>> {
-    lights
-        .iter()
-        .map(|l| {
-            illume_shade::light(
-                &l.shader.name,
-                &l.shader.params,
-                l.shader.camera_from_shader,
-            )
-            .ok()
-            .map(|(light, _)| light)
-        })
-        .collect()
-}
-
-/// Shades with `illume-shade` when it knows the surface; `None` otherwise.
-fn shade_with_library(
-    grid: &Grid,
-    attrs: &Attributes,
-    bound: &[Option<illume_shade::Light>],
-    flip: f32,
+/// Everything shading needs that is the same for every grid of a frame.
+pub(crate) struct FrameShading<'a> {
+    /// Bound surfaces keyed by the address of the `Arc<Shader>` the attributes share (the frame
+    /// keeps those alive, so an address names one shader for the whole frame).
+    surfaces: HashMap<usize, BoundSurface>,
+    default_surface: Arc<Surface>,
+    /// Bound lights, index-aligned with `Frame::lights` (`None` when binding failed).
+    lights: Vec<Option<illume_shade::Light>>,
+    coordinate_systems: HashMap<String, DMat4>,
+    camera_from_world: DMat4,
+    screen_from_camera: DMat4,
+    ndc_from_camera: DMat4,
+    raster_from_camera: DMat4,
     orthographic: bool,
-    env: &illume_shade::ShadingEnv,
-) -> Option<Shaded> {
-    let surface = attrs.surface.as_deref()?;
-    let (shader, _) = illume_shade::surface(&surface.name, &surface.params).ok()?;
-    let n = grid.len();
-    let mut g = illume_shade::ShadingGrid::new(grid.nu, grid.nv);
-    g.p.clone_from(&grid.p);
-    let user_n = grid.n != grid.ng;
-    g.ng = grid.ng.iter().map(|v| *v * flip).collect();
-    g.n = if user_n { grid.n.clone() } else { g.ng.clone() };
-    g.dpdu.clone_from(&grid.dpdu);
-    g.dpdv.clone_from(&grid.dpdv);
-    g.s.clone_from(&grid.s);
-    g.t.clone_from(&grid.t);
-    g.u.clone_from(&grid.u);
-    g.v.clone_from(&grid.v);
-    g.du = grid.du;
-    g.dv = grid.dv;
-    g.cs = grid.cs.clone().unwrap_or_else(|| vec![v3(attrs.color); n]);
-    g.os = grid
-        .os
-        .clone()
-        .unwrap_or_else(|| vec![v3(attrs.opacity); n]);
-    for var in &grid.vars {
-        g.set_var(&var.name, var.components, var.data.clone());
-    }
-    g.set_incident_from_p(orthographic);
-    let lights: Vec<&illume_shade::Light> = attrs
-        .lights
-        .iter()
-        .filter_map(|&i| bound.get(i).and_then(Option::as_ref))
-        .collect();
-    let mut env = *env;
-    env.camera_from_shader = surface.camera_from_shader;
-    illume_shade::shade_surface(&shader, &mut g, &lights, &env);
-    Some(Shaded { ci: g.ci, oi: g.oi })
+    specular_model: SpecularModel,
+    textures: Option<&'a dyn TextureLookup>,
+    pub warnings: WarnOnce,
+    pub nonfinite: AtomicU64,
 }
 
-pub(crate) fn shade_grid(
-    grid: &Grid,
-    attrs: &Attributes,
-    lights: &[Light],
-    bound: &[Option<illume_shade::Light>],
-    flip: f32,
-    orthographic: bool,
-    env: &illume_shade::ShadingEnv,
-) -> Shaded {
-    if let Some(s) = shade_with_library(grid, attrs, bound, flip, orthographic, env) {
-        return s;
+fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
+    Diagnostic {
+        severity: Severity::Warning,
+        span: shader.span.clone(),
+        request: Some(request.to_string()),
+        message,
     }
-    let n = grid.len();
-    let cs: Vec<Vec3> = grid.cs.clone().unwrap_or_else(|| vec![v3(attrs.color); n]);
-    let os: Vec<Vec3> = grid
-        .os
-        .clone()
-        .unwrap_or_else(|| vec![v3(attrs.opacity); n]);
-    let surface = attrs.surface.as_deref();
-    let name = surface.map_or("defaultsurface", |s| s.name.as_str());
-    let f = |p: &str, d: f32| {
-        surface
-            .and_then(|s| paramlist::float(&s.params, p))
-            .unwrap_or(d)
-    };
-    let mut ci = Vec::with_capacity(n);
-    for k in 0..n {
-        let p = grid.p[k];
-        let i_dir = p.normalize_or(Vec3::Z);
-        let mut nn = (grid.n[k] * flip).normalize_or(Vec3::Z);
-        if nn.dot(i_dir) > 0.0 {
-            nn = -nn; // faceforward
-        }
-        let c = match name {
-            "null" => Vec3::ZERO,
-            "constant" => os[k] * cs[k],
-            "defaultsurface" => {
-                let d = i_dir.dot(nn);
-                os[k] * cs[k] * (0.2 + 0.8 * d * d)
-            }
-            _ => {
-                let (ka, kd, ks, rough) = (
-                    f("Ka", 1.0),
-                    f("Kd", 0.5),
-                    f("Ks", 0.5),
-                    f("roughness", 0.1),
-                );
-                let (amb, diff, spec) = illuminate(p, nn, -i_dir, rough, lights, &attrs.lights);
-                os[k] * (cs[k] * (ka * amb + kd * diff) + ks * spec)
-            }
-        };
-        ci.push(c);
-    }
-    Shaded { ci, oi: os }
 }
 
-/// Sums the lights: (ambient, Lambert diffuse, Blinn specular `max(0,N·H)^(1/roughness)`).
-fn illuminate(
-    p: Vec3,
-    n: Vec3,
-    v: Vec3,
-    rough: f32,
-    lights: &[Light],
-    on: &[usize],
-) -> (Vec3, Vec3, Vec3) {
-    let mut amb = Vec3::ZERO;
-    let mut diff = Vec3::ZERO;
-    let mut spec = Vec3::ZERO;
-    let mut add = |l: Vec3, cl: Vec3| {
-        let nl = n.dot(l);
-        if nl > 0.0 {
-            diff += cl * nl;
-            let h = (l + v).normalize_or(n);
-            spec += cl * n.dot(h).max(0.0).powf(1.0 / rough.max(1e-3));
-        }
+/// Projective camera → screen → NDC → raster maps (RI Spec 3.2 §4.1.1) as matrices, for the
+/// shaders' `transform("NDC", P)` (ReflMap, Listing 9.6).
+fn projections(frame: &Frame) -> (DMat4, DMat4, DMat4) {
+    let cam = &frame.camera;
+    let screen_from_camera = match cam.perspective_scale {
+        // (d·x, d·y, z, z): the divide by w = z gives d·x/z, d·y/z.
+        Some(d) => DMat4::from_cols(
+            DVec4::new(d, 0.0, 0.0, 0.0),
+            DVec4::new(0.0, d, 0.0, 0.0),
+            DVec4::new(0.0, 0.0, 1.0, 1.0),
+            DVec4::new(0.0, 0.0, 0.0, 0.0),
+        ),
+        None => DMat4::IDENTITY,
     };
-    if on.is_empty() {
-        add(v, Vec3::ONE);
-        return (amb, diff, spec);
-    }
-    for &i in on {
-        let Some(light) = lights.get(i) else { continue };
-        let s = &light.shader;
-        let g = |name: &str, d: [f32; 3]| -> Vec3 {
-            paramlist::floats(&s.params, name)
-                .filter(|v| v.len() >= 3)
-                .map_or(v3(d), |v| Vec3::new(v[0], v[1], v[2]))
+    let [l, r, b, t] = cam.screen_window;
+    // NDC: (0,0) top-left to (1,1) bottom-right.
+    let ndc_from_screen = DMat4::from_cols(
+        DVec4::new(1.0 / (r - l), 0.0, 0.0, 0.0),
+        DVec4::new(0.0, -1.0 / (t - b), 0.0, 0.0),
+        DVec4::new(0.0, 0.0, 1.0, 0.0),
+        DVec4::new(-l / (r - l), t / (t - b), 0.0, 1.0),
+    );
+    let raster_from_ndc = DMat4::from_scale(glam::DVec3::new(
+        f64::from(cam.xres),
+        f64::from(cam.yres),
+        1.0,
+    ));
+    let ndc_from_camera = ndc_from_screen * screen_from_camera;
+    (
+        screen_from_camera,
+        ndc_from_camera,
+        raster_from_ndc * ndc_from_camera,
+    )
+}
+
+impl<'a> FrameShading<'a> {
+    /// Binds every surface and light of the frame; problems come back as warnings with the
+    /// span of the `Surface`/`LightSource` request.
+    pub fn new(
+        frame: &Frame,
+        textures: Option<&'a dyn TextureLookup>,
+    ) -> (FrameShading<'a>, Vec<Diagnostic>) {
+        let mut diags = Vec::new();
+        let default_surface = Arc::new(Surface::default_surface());
+        let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
+        for prim in &frame.primitives {
+            let Some(shader) = prim.attributes.surface.as_ref() else {
+                continue;
+            };
+            let key = Arc::as_ptr(shader) as usize;
+            if surfaces.contains_key(&key) {
+                continue;
+            }
+            let bound = if shader.name == "null" {
+                None
+            } else {
+                match illume_shade::surface(&shader.name, &shader.params) {
+                    Ok((s, warnings)) => {
+                        diags.extend(
+                            warnings
+                                .into_iter()
+                                .map(|w| diagnostic(shader, "Surface", w)),
+                        );
+                        Some(Arc::new(s))
+                    }
+                    Err(e) => {
+                        diags.push(diagnostic(
+                            shader,
+                            "Surface",
+                            format!("{e}; using defaultsurface"),
+                        ));
+                        Some(default_surface.clone())
+                    }
+                }
+            };
+            surfaces.insert(key, bound);
+        }
+        let lights = frame
+            .lights
+            .iter()
+            .map(|l| {
+                let s = &l.shader;
+                match illume_shade::light(&s.name, &s.params, s.camera_from_shader) {
+                    Ok((light, warnings)) => {
+                        diags.extend(
+                            warnings
+                                .into_iter()
+                                .map(|w| diagnostic(s, "LightSource", w)),
+                        );
+                        Some(light)
+                    }
+                    Err(e) => {
+                        diags.push(diagnostic(
+                            s,
+                            "LightSource",
+                            format!("{e}; the light is ignored"),
+                        ));
+                        None
+                    }
+                }
+            })
+            .collect();
+        let (screen_from_camera, ndc_from_camera, raster_from_camera) = projections(frame);
+        let specular_model =
+            SpecularModel::from_option(&frame.options.specular_model).unwrap_or_default();
+        let shading = FrameShading {
+            surfaces,
+            default_surface,
+            lights,
+            coordinate_systems: frame.coordinate_systems.iter().cloned().collect(),
+            camera_from_world: frame.camera.camera_from_world,
+            screen_from_camera,
+            ndc_from_camera,
+            raster_from_camera,
+            orthographic: !frame.camera.is_perspective(),
+            specular_model,
+            textures,
+            warnings: WarnOnce::new(),
+            nonfinite: AtomicU64::new(0),
         };
-        let m = s.camera_from_shader.as_mat4();
-        let intensity = paramlist::float(&s.params, "intensity").unwrap_or(1.0);
-        let cl = g("lightcolor", [1.0; 3]) * intensity;
-        match s.name.as_str() {
-            "ambientlight" => amb += cl,
-            "distantlight" => {
-                let from = m.transform_point3(g("from", [0.0; 3]));
-                let to = m.transform_point3(g("to", [0.0, 0.0, 1.0]));
-                add((from - to).normalize_or(Vec3::Z), cl);
-            }
-            _ => {
-                let from = m.transform_point3(g("from", [0.0; 3]));
-                let d = from - p;
-                let d2 = d.length_squared().max(1e-12);
-                add(d / d2.sqrt(), cl / d2);
-            }
+        (shading, diags)
+    }
+
+    fn surface_for(&self, attrs: &Attributes) -> BoundSurface {
+        match attrs.surface.as_ref() {
+            None => Some(self.default_surface.clone()),
+            Some(s) => self
+                .surfaces
+                .get(&(Arc::as_ptr(s) as usize))
+                .cloned()
+                .unwrap_or_else(|| Some(self.default_surface.clone())),
         }
     }
-    (amb, diff, spec)
+
+    /// Shades one grid. `flip` (±1) orients the geometric normals as the attributes say.
+    ///
+    /// "object" space is not yet carried with the primitive, so shaders see the surface's shader
+    /// space there (the same space unless the Surface was declared under another transform).
+    pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32) -> Shaded {
+        let n = grid.len();
+        let cs = grid
+            .cs
+            .clone()
+            .unwrap_or_else(|| vec![Vec3::from(attrs.color); n]);
+        let os = grid
+            .os
+            .clone()
+            .unwrap_or_else(|| vec![Vec3::from(attrs.opacity); n]);
+        let Some(surface) = self.surface_for(attrs) else {
+            return Shaded {
+                ci: vec![Vec3::ZERO; n],
+                oi: os,
+            };
+        };
+        let mut g = ShadingGrid::new(grid.nu, grid.nv);
+        g.p.clone_from(&grid.p);
+        g.n = grid.n.iter().map(|v| *v * flip).collect();
+        g.ng = grid.ng.iter().map(|v| *v * flip).collect();
+        g.dpdu.clone_from(&grid.dpdu);
+        g.dpdv.clone_from(&grid.dpdv);
+        g.u.clone_from(&grid.u);
+        g.v.clone_from(&grid.v);
+        g.s.clone_from(&grid.s);
+        g.t.clone_from(&grid.t);
+        g.du = grid.du;
+        g.dv = grid.dv;
+        g.cs = cs;
+        g.os = os;
+        for var in &grid.vars {
+            g.set_var(&var.name, var.components, var.data.clone());
+        }
+        g.set_incident_from_p(self.orthographic);
+        let lights: Vec<&illume_shade::Light> = attrs
+            .lights
+            .iter()
+            .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
+            .collect();
+        let mut env = ShadingEnv::new();
+        env.camera_from_world = self.camera_from_world;
+        let camera_from_shader = attrs
+            .surface
+            .as_ref()
+            .map_or(DMat4::IDENTITY, |s| s.camera_from_shader);
+        env.camera_from_object = camera_from_shader;
+        env.camera_from_shader = camera_from_shader;
+        env.coordinate_systems = Some(&self.coordinate_systems);
+        env.screen_from_camera = self.screen_from_camera;
+        env.ndc_from_camera = self.ndc_from_camera;
+        env.raster_from_camera = self.raster_from_camera;
+        env.specular_model = self.specular_model;
+        env.textures = self.textures;
+        env.warnings = Some(&self.warnings);
+        let stats = shade_surface(&surface, &mut g, &lights, &env);
+        if stats.nonfinite > 0 {
+            self.nonfinite.fetch_add(stats.nonfinite as u64, Relaxed);
+        }
+        Shaded { ci: g.ci, oi: g.oi }
+    }
 }
