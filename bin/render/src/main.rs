@@ -91,6 +91,13 @@ fn main() -> ExitCode {
         };
         let mut ri = Ri::new();
         ri.set_frame_range(frames);
+        ri.set_texture_maker(Box::new(|req, _options| {
+            let warnings = illume_texture::make_from_request(req).map_err(|e| e.to_string())?;
+            for w in warnings {
+                eprintln!("render: warning: {}: {w}", req.name());
+            }
+            Ok(())
+        }));
         if let Some(c) = &args.crop {
             ri.set_crop_override(Some([c[0], c[1], c[2], c[3]]));
         }
@@ -162,9 +169,11 @@ fn render_frame(
             b.set_position(done as u64);
         }
     };
+    // `limits texturememory` is in kilobytes.
+    let cache = illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
     let settings = illume_reyes::RenderSettings {
         progress: Some(&progress),
-        ..Default::default()
+        textures: Some(&cache),
     };
     let t = Instant::now();
     let rendered = pool.install(|| illume_reyes::render(frame, &settings));
