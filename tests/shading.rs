@@ -116,3 +116,53 @@ fn oren_nayar_with_zero_roughness_equals_matte() {
     let (err, _) = max_error(&r, |c| 0.8 * c);
     assert!(err < 1.0 / 255.0, "max error {err}");
 }
+
+#[test]
+fn bumpy_with_a_constant_map_grows_the_sphere_by_km() {
+    use illume_imageio::Image;
+    use illume_texture::{make_texture, MakeOptions, TextureCache, WrapMode};
+    let dir = std::env::temp_dir().join(format!("illume-bumpy-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = dir.join("one.tx");
+    let one = Image {
+        width: 8,
+        height: 8,
+        channels: vec!["y".into()],
+        data: vec![1.0; 64],
+    };
+    // Periodic: a black border would fade the amplitude at the sphere's s and t seams.
+    let opts = MakeOptions {
+        wrap: [WrapMode::Periodic; 2],
+        ..MakeOptions::default()
+    };
+    make_texture(&one, &map, &opts).unwrap();
+    // Radius 1 displaced by Km·1 = 0.2 along N: an orthographic disc of radius 1.2.
+    let rib = format!(
+        "Format {RES} {RES} 1\nScreenWindow -1.5 1.5 -1.5 1.5\nPixelSamples 4 4\nPixelFilter \"box\" 1 1\n\
+         WorldBegin\nAttribute \"displacementbound\" \"sphere\" [0.25]\n\
+         Displacement \"bumpy\" \"Km\" [0.2] \"texturename\" \"{}\"\nTranslate 0 0 5\n\
+         Sphere 1 -1 1 360\nWorldEnd\n",
+        map.display()
+    );
+    let mut ri = Ri::new();
+    for item in illume_rib::Parser::new(std::io::Cursor::new(rib.into_bytes()), "bumpy.rib") {
+        ri.request(item.unwrap());
+    }
+    ri.finish();
+    let frames = ri.take_frames();
+    let cache = TextureCache::new(1 << 22);
+    let settings = RenderSettings {
+        textures: Some(&cache),
+        ..RenderSettings::default()
+    };
+    let r = render(&frames[0], &settings);
+    let px_per_unit = f64::from(RES) / 3.0;
+    let area: f64 =
+        r.rgba.chunks_exact(4).map(|p| f64::from(p[3])).sum::<f64>() / (px_per_unit * px_per_unit);
+    let expected = std::f64::consts::PI * 1.2 * 1.2;
+    assert!(
+        (area - expected).abs() / expected < 0.01,
+        "area {area}, expected {expected}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

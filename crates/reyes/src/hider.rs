@@ -289,7 +289,8 @@ fn dice_and_shade(
     let shaded = shading.shade_grid(&grid, a, flip);
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;
-    let pos: Vec<Vec3> = grid
+    // Displacement may have moved the points; sample where the shader left them.
+    let pos: Vec<Vec3> = shaded
         .p
         .iter()
         .map(|p| match cam.raster_from_camera(p.as_dvec3()) {

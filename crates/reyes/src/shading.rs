@@ -5,16 +5,22 @@ use glam::{DMat4, DVec4, Vec3};
 use illume_geom::Grid;
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
-    shade_surface, ShadingEnv, ShadingGrid, SpecularModel, Surface, TextureLookup, WarnOnce,
+    displace, shade_surface, Displacement, ShadingEnv, ShadingGrid, SpecularModel, Surface,
+    TextureLookup, WarnOnce,
 };
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
 
 pub(crate) struct Shaded {
+    /// Positions after displacement (the diced positions when there is none).
+    pub p: Vec<Vec3>,
     pub ci: Vec<Vec3>,
     pub oi: Vec<Vec3>,
 }
+
+/// A bound displacement, keyed like the surfaces; `None` when the name is unknown (warned).
+type BoundDisplacement = Option<Arc<Displacement>>;
 
 /// A bound surface, or `None` for `Surface "null"`.
 type BoundSurface = Option<Arc<Surface>>;
@@ -25,6 +31,7 @@ pub(crate) struct FrameShading<'a> {
     /// keeps those alive, so an address names one shader for the whole frame).
     surfaces: HashMap<usize, BoundSurface>,
     default_surface: Arc<Surface>,
+    displacements: HashMap<usize, BoundDisplacement>,
     /// Bound lights, index-aligned with `Frame::lights` (`None` when binding failed).
     lights: Vec<Option<illume_shade::Light>>,
     coordinate_systems: HashMap<String, DMat4>,
@@ -125,6 +132,35 @@ impl<'a> FrameShading<'a> {
             };
             surfaces.insert(key, bound);
         }
+        let mut displacements: HashMap<usize, BoundDisplacement> = HashMap::new();
+        for prim in &frame.primitives {
+            let Some(shader) = prim.attributes.displacement.as_ref() else {
+                continue;
+            };
+            let key = Arc::as_ptr(shader) as usize;
+            if displacements.contains_key(&key) {
+                continue;
+            }
+            let bound = match illume_shade::displacement(&shader.name, &shader.params) {
+                Ok((d, warnings)) => {
+                    diags.extend(
+                        warnings
+                            .into_iter()
+                            .map(|w| diagnostic(shader, "Displacement", w)),
+                    );
+                    Some(Arc::new(d))
+                }
+                Err(e) => {
+                    diags.push(diagnostic(
+                        shader,
+                        "Displacement",
+                        format!("{e}; not displacing"),
+                    ));
+                    None
+                }
+            };
+            displacements.insert(key, bound);
+        }
         let lights = frame
             .lights
             .iter()
@@ -156,6 +192,7 @@ impl<'a> FrameShading<'a> {
         let shading = FrameShading {
             surfaces,
             default_surface,
+            displacements,
             lights,
             coordinate_systems: frame.coordinate_systems.iter().cloned().collect(),
             camera_from_world: frame.camera.camera_from_world,
@@ -198,6 +235,7 @@ impl<'a> FrameShading<'a> {
             .unwrap_or_else(|| vec![Vec3::from(attrs.opacity); n]);
         let Some(surface) = self.surface_for(attrs) else {
             return Shaded {
+                p: grid.p.clone(),
                 ci: vec![Vec3::ZERO; n],
                 oi: os,
             };
@@ -240,10 +278,28 @@ impl<'a> FrameShading<'a> {
         env.specular_model = self.specular_model;
         env.textures = self.textures;
         env.warnings = Some(&self.warnings);
+        let displacement = attrs.displacement.as_ref().and_then(|d| {
+            self.displacements
+                .get(&(Arc::as_ptr(d) as usize))
+                .cloned()
+                .flatten()
+        });
+        if let Some(d) = displacement {
+            env.camera_from_shader = attrs
+                .displacement
+                .as_ref()
+                .map_or(camera_from_shader, |s| s.camera_from_shader);
+            displace(&d, &mut g, &env);
+            env.camera_from_shader = camera_from_shader;
+        }
         let stats = shade_surface(&surface, &mut g, &lights, &env);
         if stats.nonfinite > 0 {
             self.nonfinite.fetch_add(stats.nonfinite as u64, Relaxed);
         }
-        Shaded { ci: g.ci, oi: g.oi }
+        Shaded {
+            p: g.p,
+            ci: g.ci,
+            oi: g.oi,
+        }
     }
 }
