@@ -82,3 +82,42 @@ fn print(bytes: &[u8]) -> Vec<u8> {
     }
     out
 }
+
+/// A reader that hands out at most `n` bytes per call, so tokens straddle every refill.
+struct Trickle<'a> {
+    data: &'a [u8],
+    n: usize,
+}
+
+impl std::io::Read for Trickle<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let k = self.n.min(buf.len()).min(self.data.len());
+        buf[..k].copy_from_slice(&self.data[..k]);
+        self.data = &self.data[k..];
+        Ok(k)
+    }
+}
+
+fn items(reader: impl std::io::Read) -> Vec<String> {
+    Parser::new(reader, "t.rib")
+        .map(|i| match i {
+            Ok(r) => format!("{:?} @{}", r.value, r.span),
+            Err(d) => d.to_string(),
+        })
+        .collect()
+}
+
+#[test]
+fn tokens_split_across_reads_parse_as_whole() {
+    let with_errors = [
+        GOOD,
+        b"Sphere 1 2 \"unterminated\nColor [1 2\nWorldEnd 1.2.3\n",
+    ]
+    .concat();
+    for bytes in [GOOD.to_vec(), good_binary(), with_errors] {
+        let whole = items(&bytes[..]);
+        for n in [1, 2, 3, 7] {
+            assert_eq!(items(Trickle { data: &bytes, n }), whole, "{n}-byte reads");
+        }
+    }
+}

@@ -28,7 +28,9 @@ pub mod environment;
 pub mod filter;
 pub mod lookup;
 pub mod mipmap;
+pub mod request;
 mod sampler;
+pub mod shading;
 mod shadow;
 pub mod shadowmap;
 mod texture;
@@ -43,6 +45,7 @@ pub use cache::{CacheStats, TextureCache, TextureInfo, TextureKind};
 pub use environment::{latlong_direction, latlong_st};
 pub use filter::FilterKind;
 pub use lookup::{corners_from_derivatives, vector_corners, LookupOptions};
+pub use request::make_from_request;
 pub use txfile::PixelFormat;
 pub use wrapmode::WrapMode;
 

@@ -1,0 +1,107 @@
+//! From the rendered float image to the frame's `Display`s through `illume-imageio`.
+//! No `Display` means `ri.tif` (rgba); `framebuffer` writes a PNG named after the display.
+use crate::Rendered;
+use illume_imageio::{write_display, DepthMatrices, Image, ImageError, Quantize};
+use illume_ri::{transform, DisplaySpec, Frame};
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum DisplayError {
+    #[error("Display \"{name}\": unknown mode \"{mode}\"")]
+    Mode { name: String, mode: String },
+    #[error(transparent)]
+    Image(#[from] ImageError),
+}
+
+/// What was written, so the CLI can say where a `framebuffer` went.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WrittenDisplay {
+    pub path: PathBuf,
+    pub kind: String,
+    pub framebuffer: bool,
+}
+
+/// The float image for one display mode (`rgb`, `rgba`, `a`, `z`, `rgbz`, `rgbaz`).
+pub fn display_image(r: &Rendered, mode: &str) -> Option<Image> {
+    let letters: Vec<char> = mode.chars().collect();
+    if letters.is_empty() || letters.iter().any(|c| !"rgbaz".contains(*c)) {
+        return None;
+    }
+    let mut data = Vec::with_capacity((r.width * r.height) as usize * letters.len());
+    for (px, z) in r.rgba.chunks_exact(4).zip(&r.z) {
+        for c in &letters {
+            data.push(match c {
+                'r' => px[0],
+                'g' => px[1],
+                'b' => px[2],
+                'a' => px[3],
+                _ => *z,
+            });
+        }
+    }
+    Some(Image {
+        width: r.width,
+        height: r.height,
+        channels: letters.iter().map(|c| c.to_string()).collect(),
+        data,
+    })
+}
+
+pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay, DisplayError>> {
+    let default = [DisplaySpec {
+        name: "ri.tif".into(),
+        kind: "tiff".into(),
+        mode: "rgba".into(),
+        params: Vec::new(),
+    }];
+    let displays = if frame.options.displays.is_empty() {
+        &default[..]
+    } else {
+        &frame.options.displays[..]
+    };
+    let cam = &frame.camera;
+    let depth = DepthMatrices {
+        world_to_screen: transform::to_rib(&cam.screen_from_world()),
+        world_to_camera: transform::to_rib(&cam.camera_from_world),
+    };
+    displays
+        .iter()
+        .map(|d| {
+            let Some(image) = display_image(r, &d.mode) else {
+                return Err(DisplayError::Mode {
+                    name: d.name.clone(),
+                    mode: d.mode.clone(),
+                });
+            };
+            let framebuffer = d.kind == "framebuffer";
+            let (path, kind) = if framebuffer {
+                let p = PathBuf::from(&d.name);
+                let p = if p.extension().is_some_and(|e| e == "png") {
+                    p
+                } else {
+                    p.with_extension("png")
+                };
+                (p, "png".to_string())
+            } else {
+                (PathBuf::from(&d.name), d.kind.clone())
+            };
+            let q = if d.mode == "z" {
+                frame.options.quantize_z
+            } else {
+                frame.options.quantize_rgba
+            };
+            let q = Quantize {
+                one: q.one,
+                min: q.min,
+                max: q.max,
+                dither: q.dither,
+            };
+            write_display(&path, &kind, &image, q, Some(&depth))?;
+            Ok(WrittenDisplay {
+                path,
+                kind,
+                framebuffer,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,574 @@
+//! The bucket loop: pieces overlapping each bucket, nearest first; shared grids diced and
+//! shaded once (by whichever bucket needs them first); micropolygons sampled into visible-point
+//! lists; lists composited front to back; pixel filter; exposure.
+use crate::filter::PixelFilter;
+use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
+use crate::sampling::sample_position;
+use crate::shading::FrameShading;
+use crate::{RenderSettings, Rendered, Stats};
+use glam::Vec3;
+use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
+use std::sync::{Arc, OnceLock};
+use std::time::Instant;
+
+/// A diced, shaded grid in raster space.
+struct ShadedGrid {
+    nu: usize,
+    nv: usize,
+    /// Raster x, y and camera z per vertex.
+    pos: Vec<Vec3>,
+    ci: Vec<Vec3>,
+    oi: Vec<Vec3>,
+    /// Per micropolygon: culled as a back face (Sides 1).
+    backface: Vec<bool>,
+    matte: bool,
+    smooth: bool,
+}
+
+#[derive(Clone, Copy)]
+struct VisiblePoint {
+    z: f32,
+    order: u64,
+    c: Vec3,
+    o: Vec3,
+    matte: bool,
+}
+
+#[derive(Default)]
+struct Counters {
+    grids: AtomicU64,
+    micropolygons: AtomicU64,
+    samples: AtomicU64,
+    occluded: AtomicU64,
+    dice_ns: AtomicU64,
+    shade_ns: AtomicU64,
+    sample_ns: AtomicU64,
+    filter_ns: AtomicU64,
+}
+
+fn ns(t: Instant) -> u64 {
+    t.elapsed().as_nanos() as u64
+}
+
+pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
+    let opts = &frame.options;
+    let cam = &frame.camera;
+    let filter = PixelFilter::new(&opts.filter.0, opts.filter.1, opts.filter.2);
+    let (rx, ry) = filter.radius();
+    let [cx0, cx1, cy0, cy1] = cam.crop;
+    let (width, height) = (cx1 - cx0, cy1 - cy0);
+    let margin = rx.max(ry) + 1.0;
+    let region = [
+        cx0 as f32 - margin,
+        cx1 as f32 + margin,
+        cy0 as f32 - margin,
+        cy1 as f32 + margin,
+    ];
+    let t0 = Instant::now();
+    let refiner = Refiner {
+        camera: cam,
+        region,
+        eye_splits: opts.eye_splits,
+        grid_size: opts.grid_size.max(1) as usize,
+    };
+    let per_prim: Vec<(Vec<Piece>, RefineCounts)> = frame
+        .primitives
+        .par_iter()
+        .map(|fp| {
+            let mut out = Vec::new();
+            let mut counts = RefineCounts::default();
+            refiner.refine(
+                PrimRef::Borrowed(fp.primitive.as_ref()),
+                &fp.attributes,
+                0,
+                0,
+                &mut out,
+                &mut counts,
+            );
+            (out, counts)
+        })
+        .collect();
+    let mut warnings = Vec::new();
+    let mut pieces = Vec::new();
+    let mut culled = 0;
+    for ((ps, counts), fp) in per_prim.into_iter().zip(&frame.primitives) {
+        culled += counts.culled;
+        if counts.eye_dropped > 0 {
+            warnings.push(Diagnostic {
+                severity: Severity::Warning,
+                span: fp.span.clone(),
+                request: None,
+                message: format!(
+                    "{} piece(s) still crossed the eye plane after {} eye splits (or split too deep) and were dropped",
+                    counts.eye_dropped, opts.eye_splits
+                ),
+            });
+        }
+        pieces.extend(ps);
+    }
+    let split_ns = ns(t0);
+
+    // Buckets over the crop region; each lists the pieces whose padded bound overlaps it.
+    let [bw, bh] = opts.bucket_size.map(|b| b.max(1));
+    let nbx = width.div_ceil(bw).max(1) as usize;
+    let nby = height.div_ceil(bh).max(1) as usize;
+    let mut lists: Vec<Vec<usize>> = vec![Vec::new(); nbx * nby];
+    for (id, p) in pieces.iter().enumerate() {
+        let bx0 = ((p.raster[0] - margin - cx0 as f32) / bw as f32)
+            .floor()
+            .max(0.0) as usize;
+        let bx1 = ((p.raster[1] + margin - cx0 as f32) / bw as f32).floor();
+        let by0 = ((p.raster[2] - margin - cy0 as f32) / bh as f32)
+            .floor()
+            .max(0.0) as usize;
+        let by1 = ((p.raster[3] + margin - cy0 as f32) / bh as f32).floor();
+        if bx1 < 0.0 || by1 < 0.0 {
+            continue;
+        }
+        for by in by0..=(by1 as usize).min(nby - 1) {
+            for bx in bx0..=(bx1 as usize).min(nbx - 1) {
+                lists[by * nbx + bx].push(id);
+            }
+        }
+    }
+    for l in &mut lists {
+        l.sort_by(|&a, &b| pieces[a].zmin.total_cmp(&pieces[b].zmin).then(a.cmp(&b)));
+    }
+    let grids: Vec<OnceLock<Option<Arc<ShadedGrid>>>> =
+        (0..pieces.len()).map(|_| OnceLock::new()).collect();
+    let counters = Counters::default();
+    let done = AtomicUsize::new(0);
+    let total = nbx * nby;
+    let frame_no = frame.number.unwrap_or(0);
+    let spp = opts.pixel_samples;
+
+    let (shading, shader_warnings) = FrameShading::new(frame, settings.textures);
+    warnings.extend(shader_warnings);
+    let buckets: Vec<(Vec<[f32; 4]>, Vec<f32>)> = (0..total)
+        .into_par_iter()
+        .map(|b| {
+            let (bx, by) = ((b % nbx) as u32, (b / nbx) as u32);
+            let px0 = cx0 + bx * bw;
+            let py0 = cy0 + by * bh;
+            let px1 = (px0 + bw).min(cx1);
+            let py1 = (py0 + bh).min(cy1);
+            let out = render_bucket(
+                frame,
+                &shading,
+                &pieces,
+                &grids,
+                &lists[b],
+                [px0, px1, py0, py1],
+                &filter,
+                spp,
+                frame_no,
+                &counters,
+            );
+            let n = done.fetch_add(1, Relaxed) + 1;
+            if let Some(p) = settings.progress {
+                p(n, total);
+            }
+            out
+        })
+        .collect();
+
+    let mut rgba = vec![0.0f32; (width * height * 4) as usize];
+    let mut z = vec![f32::MAX; (width * height) as usize];
+    for (b, (c, d)) in buckets.into_iter().enumerate() {
+        let (bx, by) = ((b % nbx) as u32, (b / nbx) as u32);
+        let px0 = bx * bw;
+        let py0 = by * bh;
+        let bwid = (px0 + bw).min(width) - px0;
+        for (k, (pc, pz)) in c.iter().zip(&d).enumerate() {
+            let (x, y) = (px0 + k as u32 % bwid, py0 + k as u32 / bwid);
+            let o = (y * width + x) as usize;
+            rgba[o * 4..o * 4 + 4].copy_from_slice(pc);
+            z[o] = *pz;
+        }
+    }
+    // Exposure (RI Spec 3.2 `RiExposure`): c' = (gain·c)^(1/gamma) on colour, not alpha.
+    let (gain, gamma) = opts.exposure;
+    if gain != 1.0 || gamma != 1.0 {
+        for px in rgba.chunks_exact_mut(4) {
+            for c in &mut px[..3] {
+                *c = (*c * gain).max(0.0).powf(1.0 / gamma);
+            }
+        }
+    }
+    let stats = Stats {
+        primitives: frame.primitives.len() as u64,
+        pieces: pieces.len() as u64,
+        grids: counters.grids.load(Relaxed),
+        micropolygons: counters.micropolygons.load(Relaxed),
+        samples: counters.samples.load(Relaxed),
+        culled_pieces: culled,
+        occluded_grids: counters.occluded.load(Relaxed),
+        split_seconds: split_ns as f64 * 1e-9,
+        dice_seconds: counters.dice_ns.load(Relaxed) as f64 * 1e-9,
+        shade_seconds: counters.shade_ns.load(Relaxed) as f64 * 1e-9,
+        sample_seconds: counters.sample_ns.load(Relaxed) as f64 * 1e-9,
+        filter_seconds: counters.filter_ns.load(Relaxed) as f64 * 1e-9,
+        nonfinite: shading.nonfinite.load(Relaxed),
+    };
+    // Shading problems found while rendering (missing maps, unknown spaces), once each.
+    warnings.extend(
+        shading
+            .warnings
+            .messages()
+            .into_iter()
+            .map(|message| Diagnostic {
+                severity: Severity::Warning,
+                span: illume_rib::Span::synthetic(),
+                request: None,
+                message,
+            }),
+    );
+    Rendered {
+        x0: cx0,
+        y0: cy0,
+        width,
+        height,
+        rgba,
+        z,
+        stats,
+        warnings,
+    }
+}
+
+fn dice_and_shade(
+    frame: &Frame,
+    shading: &FrameShading,
+    piece: &Piece,
+    counters: &Counters,
+) -> Option<Arc<ShadedGrid>> {
+    let t = Instant::now();
+    let grid = piece.prim.get().dice(piece.nu, piece.nv);
+    counters.dice_ns.fetch_add(ns(t), Relaxed);
+    if grid.nu < 2 || grid.nv < 2 || grid.p.len() != grid.nu * grid.nv {
+        return None;
+    }
+    let t = Instant::now();
+    let a = &piece.attrs;
+    // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
+    let flip = if a.orientation_rh { -1.0 } else { 1.0 };
+    let shaded = shading.shade_grid(&grid, a, flip);
+    counters.shade_ns.fetch_add(ns(t), Relaxed);
+    let cam = &frame.camera;
+    let pos: Vec<Vec3> = grid
+        .p
+        .iter()
+        .map(|p| match cam.raster_from_camera(p.as_dvec3()) {
+            Some(q) => q.as_vec3(),
+            None => Vec3::new(0.0, 0.0, f32::NAN),
+        })
+        .collect();
+    let (nu, nv) = (grid.nu, grid.nv);
+    let mut backface = vec![false; (nu - 1) * (nv - 1)];
+    if a.sides == 1 {
+        for j in 0..nv - 1 {
+            for i in 0..nu - 1 {
+                let k = j * nu + i;
+                let view = if cam.is_perspective() {
+                    grid.p[k]
+                } else {
+                    Vec3::Z
+                };
+                backface[j * (nu - 1) + i] = (grid.ng[k] * flip).dot(view) > 0.0;
+            }
+        }
+    }
+    counters.grids.fetch_add(1, Relaxed);
+    counters
+        .micropolygons
+        .fetch_add(((nu - 1) * (nv - 1)) as u64, Relaxed);
+    Some(Arc::new(ShadedGrid {
+        nu,
+        nv,
+        pos,
+        ci: shaded.ci,
+        oi: shaded.oi,
+        backface,
+        matte: a.matte,
+        smooth: a.smooth_shading,
+    }))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn render_bucket(
+    frame: &Frame,
+    shading: &FrameShading,
+    pieces: &[Piece],
+    grids: &[OnceLock<Option<Arc<ShadedGrid>>>],
+    list: &[usize],
+    [px0, px1, py0, py1]: [u32; 4],
+    filter: &PixelFilter,
+    spp: [u32; 2],
+    frame_no: i32,
+    counters: &Counters,
+) -> (Vec<[f32; 4]>, Vec<f32>) {
+    let opts = &frame.options;
+    let (rx, ry) = filter.radius();
+    // Sample region: every pixel whose samples reach this bucket's pixel centres.
+    let sx0 = (px0 as f32 + 0.5 - rx).floor() as i32;
+    let sx1 = (px1 as f32 - 0.5 + rx).floor() as i32 + 1;
+    let sy0 = (py0 as f32 + 0.5 - ry).floor() as i32;
+    let sy1 = (py1 as f32 - 0.5 + ry).floor() as i32 + 1;
+    let (sw, sh) = ((sx1 - sx0) as usize, (sy1 - sy0) as usize);
+    let n_per = (spp[0] * spp[1]) as usize;
+    let mut pos = Vec::with_capacity(sw * sh * n_per);
+    for py in sy0..sy1 {
+        for px in sx0..sx1 {
+            for j in 0..spp[1] {
+                for i in 0..spp[0] {
+                    pos.push(sample_position(px, py, i, j, spp, frame_no, opts.jitter));
+                }
+            }
+        }
+    }
+    let mut lists: Vec<Vec<VisiblePoint>> = vec![Vec::new(); pos.len()];
+    let mut opaque_z = vec![f32::INFINITY; pos.len()];
+    let (near, far) = (frame.camera.near as f32, frame.camera.far as f32);
+    let persp = frame.camera.is_perspective();
+    let t_sample = Instant::now();
+    let mut shade_elapsed = 0u64;
+    for &id in list {
+        let piece = &pieces[id];
+        let max_opaque = opaque_z.iter().copied().fold(0.0f32, f32::max);
+        if piece.zmin > max_opaque {
+            counters.occluded.fetch_add(1, Relaxed);
+            continue;
+        }
+        let t = Instant::now();
+        let grid = grids[id].get_or_init(|| dice_and_shade(frame, shading, piece, counters));
+        shade_elapsed += ns(t);
+        let Some(g) = grid else { continue };
+        for j in 0..g.nv - 1 {
+            for i in 0..g.nu - 1 {
+                let m = j * (g.nu - 1) + i;
+                if g.backface[m] {
+                    continue;
+                }
+                let a = j * g.nu + i;
+                let quad = [a, a + 1, a + g.nu + 1, a + g.nu];
+                if quad.iter().any(|&k| g.pos[k].z.is_nan()) {
+                    continue;
+                }
+                let order = ((id as u64) << 32) | m as u64;
+                for tri in [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]] {
+                    sample_triangle(
+                        g,
+                        tri,
+                        a,
+                        order,
+                        &pos,
+                        &mut lists,
+                        &mut opaque_z,
+                        [sx0, sy0],
+                        sw,
+                        sh,
+                        spp,
+                        n_per,
+                        [near, far],
+                        persp,
+                        counters,
+                    );
+                }
+            }
+        }
+    }
+    counters
+        .sample_ns
+        .fetch_add(ns(t_sample).saturating_sub(shade_elapsed), Relaxed);
+
+    // Composite each sample front to back, then filter into pixels.
+    let t = Instant::now();
+    let composited: Vec<([f32; 4], f32, f32)> = lists
+        .iter_mut()
+        .map(|l| {
+            l.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.order.cmp(&b.order)));
+            let mut c = Vec3::ZERO;
+            let mut t = Vec3::ONE;
+            let mut alpha = 0.0f32;
+            let mut ta = 1.0f32;
+            for vp in l.iter() {
+                let om = (vp.o.x + vp.o.y + vp.o.z) / 3.0;
+                if !vp.matte {
+                    c += t * vp.c;
+                    alpha += ta * om;
+                }
+                t *= Vec3::ONE - vp.o;
+                ta *= 1.0 - om;
+                if t.max_element() <= 0.0 {
+                    break;
+                }
+            }
+            let z1 = l.first().map_or(f32::MAX, |v| v.z);
+            let z2 = l.get(1).map_or(z1, |v| v.z);
+            ([c.x, c.y, c.z, alpha], z1, 0.5 * (z1 + z2))
+        })
+        .collect();
+    let bw = (px1 - px0) as usize;
+    let bh = (py1 - py0) as usize;
+    let mut color = Vec::with_capacity(bw * bh);
+    let mut depth = Vec::with_capacity(bw * bh);
+    for y in py0..py1 {
+        for x in px0..px1 {
+            let (cxp, cyp) = (x as f32 + 0.5, y as f32 + 0.5);
+            let mut acc = [0.0f32; 4];
+            let mut wsum = 0.0f32;
+            let qx0 = ((cxp - rx).floor() as i32).max(sx0);
+            let qx1 = ((cxp + rx).floor() as i32).min(sx1 - 1);
+            let qy0 = ((cyp - ry).floor() as i32).max(sy0);
+            let qy1 = ((cyp + ry).floor() as i32).min(sy1 - 1);
+            for qy in qy0..=qy1 {
+                for qx in qx0..=qx1 {
+                    let base = (((qy - sy0) as usize) * sw + (qx - sx0) as usize) * n_per;
+                    for s in base..base + n_per {
+                        let (sxp, syp) = pos[s];
+                        let w = filter.weight(sxp - cxp, syp - cyp);
+                        if w != 0.0 {
+                            wsum += w;
+                            for (a, v) in acc.iter_mut().zip(composited[s].0) {
+                                *a += w * v;
+                            }
+                        }
+                    }
+                }
+            }
+            if wsum != 0.0 {
+                acc = acc.map(|v| v / wsum);
+            }
+            color.push(acc);
+            let base = (((y as i32 - sy0) as usize) * sw + (x as i32 - sx0) as usize) * n_per;
+            let own = &composited[base..base + n_per];
+            let zs = own.iter().map(|c| {
+                if opts.depth_filter == DepthFilter::Midpoint {
+                    c.2
+                } else {
+                    c.1
+                }
+            });
+            let d = match opts.depth_filter {
+                DepthFilter::Min | DepthFilter::Midpoint => zs.fold(f32::MAX, f32::min),
+                DepthFilter::Max => zs.fold(f32::MIN, f32::max),
+                DepthFilter::Average => {
+                    let hits: Vec<f32> = zs.filter(|&z| z < f32::MAX).collect();
+                    if hits.is_empty() {
+                        f32::MAX
+                    } else {
+                        hits.iter().sum::<f32>() / hits.len() as f32
+                    }
+                }
+            };
+            depth.push(d);
+        }
+    }
+    counters.filter_ns.fetch_add(ns(t), Relaxed);
+    (color, depth)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn sample_triangle(
+    g: &ShadedGrid,
+    tri: [usize; 3],
+    first: usize,
+    order: u64,
+    pos: &[(f32, f32)],
+    lists: &mut [Vec<VisiblePoint>],
+    opaque_z: &mut [f32],
+    [sx0, sy0]: [i32; 2],
+    sw: usize,
+    sh: usize,
+    spp: [u32; 2],
+    n_per: usize,
+    [near, far]: [f32; 2],
+    persp: bool,
+    counters: &Counters,
+) {
+    let mut v = tri.map(|k| g.pos[k]);
+    let mut idx = tri;
+    let area = |v: &[Vec3; 3]| {
+        let (a, b, c) = (v[0].as_dvec3(), v[1].as_dvec3(), v[2].as_dvec3());
+        (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
+    };
+    let mut ar = area(&v);
+    if ar == 0.0 || !ar.is_finite() {
+        return;
+    }
+    if ar < 0.0 {
+        v.swap(1, 2);
+        idx.swap(1, 2);
+        ar = -ar;
+    }
+    let xmin = v.iter().map(|p| p.x).fold(f32::INFINITY, f32::min);
+    let xmax = v.iter().map(|p| p.x).fold(f32::NEG_INFINITY, f32::max);
+    let ymin = v.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+    let ymax = v.iter().map(|p| p.y).fold(f32::NEG_INFINITY, f32::max);
+    let qx0 = (xmin.floor() as i32 - sx0).max(0);
+    let qx1 = (xmax.floor() as i32 - sx0).min(sw as i32 - 1);
+    let qy0 = (ymin.floor() as i32 - sy0).max(0);
+    let qy1 = (ymax.floor() as i32 - sy0).min(sh as i32 - 1);
+    if qx0 > qx1 || qy0 > qy1 {
+        return;
+    }
+    let _ = spp;
+    let vd = v.map(|p| p.as_dvec3());
+    // Edge functions with a top-left tie rule so a sample on a shared edge counts once.
+    let edge = |a: glam::DVec3, b: glam::DVec3, x: f64, y: f64| -> bool {
+        let e = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
+        e > 0.0 || (e == 0.0 && (b.y < a.y || (b.y == a.y && b.x > a.x)))
+    };
+    let inv_z = vd.map(|p| 1.0 / p.z);
+    for qy in qy0..=qy1 {
+        for qx in qx0..=qx1 {
+            let base = (qy as usize * sw + qx as usize) * n_per;
+            for s in base..base + n_per {
+                let (x, y) = (f64::from(pos[s].0), f64::from(pos[s].1));
+                if !(edge(vd[0], vd[1], x, y)
+                    && edge(vd[1], vd[2], x, y)
+                    && edge(vd[2], vd[0], x, y))
+                {
+                    continue;
+                }
+                let w0 = ((vd[2].x - vd[1].x) * (y - vd[1].y)
+                    - (vd[2].y - vd[1].y) * (x - vd[1].x))
+                    / ar;
+                let w1 = ((vd[0].x - vd[2].x) * (y - vd[2].y)
+                    - (vd[0].y - vd[2].y) * (x - vd[2].x))
+                    / ar;
+                let w2 = 1.0 - w0 - w1;
+                // Depth is linear in screen space for ortho, its reciprocal for perspective.
+                let z = if persp {
+                    (1.0 / (w0 * inv_z[0] + w1 * inv_z[1] + w2 * inv_z[2])) as f32
+                } else {
+                    (w0 * vd[0].z + w1 * vd[1].z + w2 * vd[2].z) as f32
+                };
+                if z < near || z > far || z >= opaque_z[s] {
+                    continue;
+                }
+                let (c, o) = if g.smooth {
+                    let (a, b, cc) = (w0 as f32, w1 as f32, w2 as f32);
+                    (
+                        g.ci[idx[0]] * a + g.ci[idx[1]] * b + g.ci[idx[2]] * cc,
+                        g.oi[idx[0]] * a + g.oi[idx[1]] * b + g.oi[idx[2]] * cc,
+                    )
+                } else {
+                    (g.ci[first], g.oi[first])
+                };
+                counters.samples.fetch_add(1, Relaxed);
+                lists[s].push(VisiblePoint {
+                    z,
+                    order,
+                    c,
+                    o,
+                    matte: g.matte,
+                });
+                if o.min_element() >= 1.0 {
+                    opaque_z[s] = z;
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,226 @@
+//! Bound → cull → eye-split → split until diceable at the ShadingRate: turns the frame's
+//! primitives into dice-ready pieces with their dice rates. Decisions depend on the primitive
+//! and the camera only (not on buckets or threads), so every run dices identically.
+use glam::{DVec3, Vec3};
+use illume_geom::{Bound, Primitive};
+use illume_ri::{Attributes, Camera};
+use std::sync::Arc;
+
+/// Splitting deeper than this drops the piece (a degenerate primitive must not hang).
+const MAX_SPLIT_DEPTH: u32 = 48;
+/// Vertices per side of the coarse test dice used to measure raster size.
+const TEST_DICE: usize = 5;
+
+pub(crate) enum PrimRef<'a> {
+    Borrowed(&'a dyn Primitive),
+    Owned(Box<dyn Primitive>),
+}
+
+impl PrimRef<'_> {
+    pub fn get(&self) -> &dyn Primitive {
+        match self {
+            PrimRef::Borrowed(p) => *p,
+            PrimRef::Owned(p) => p.as_ref(),
+        }
+    }
+}
+
+pub(crate) struct Piece<'a> {
+    pub prim: PrimRef<'a>,
+    pub attrs: Arc<Attributes>,
+    /// Dice rates in vertices.
+    pub nu: usize,
+    pub nv: usize,
+    /// Raster bound x0 x1 y0 y1 and nearest camera depth.
+    pub raster: [f32; 4],
+    pub zmin: f32,
+}
+
+pub(crate) struct Refiner<'c> {
+    pub camera: &'c Camera,
+    /// Region (pixels, with filter margin) outside of which pieces are culled.
+    pub region: [f32; 4],
+    pub eye_splits: u32,
+    pub grid_size: usize,
+}
+
+#[derive(Default)]
+pub(crate) struct RefineCounts {
+    pub culled: u64,
+    pub eye_dropped: u64,
+}
+
+impl Refiner<'_> {
+    fn eye_z(&self) -> f64 {
+        self.camera.near.max(1e-4)
+    }
+
+    fn project(&self, p: Vec3) -> Option<DVec3> {
+        self.camera.raster_from_camera(p.as_dvec3())
+    }
+
+    /// Whether the box lies entirely outside one side of the viewing volume of `region`.
+    fn outside_frustum(&self, b: &Bound) -> bool {
+        let c = self.camera;
+        if f64::from(b.max.z) < c.near || f64::from(b.min.z) > c.far {
+            return true;
+        }
+        let [l, r, bot, t] = c.screen_window;
+        let (w, h) = (f64::from(c.xres), f64::from(c.yres));
+        // Screen-space edges of the region.
+        let sx0 = l + f64::from(self.region[0]) / w * (r - l);
+        let sx1 = l + f64::from(self.region[1]) / w * (r - l);
+        let sy1 = t - f64::from(self.region[2]) / h * (t - bot);
+        let sy0 = t - f64::from(self.region[3]) / h * (t - bot);
+        let corners = b.corners().map(|p| p.as_dvec3());
+        let d = c.perspective_scale;
+        // Screen x of a point is x·d/z (perspective) or x: test the linear forms x·d − s·z.
+        let all = |f: &dyn Fn(DVec3) -> bool| corners.iter().all(|&p| f(p));
+        match d {
+            Some(d) => {
+                all(&|p| p.x * d - sx1 * p.z > 0.0)
+                    || all(&|p| p.x * d - sx0 * p.z < 0.0)
+                    || all(&|p| p.y * d - sy1 * p.z > 0.0)
+                    || all(&|p| p.y * d - sy0 * p.z < 0.0)
+            }
+            None => {
+                all(&|p| p.x > sx1)
+                    || all(&|p| p.x < sx0)
+                    || all(&|p| p.y > sy1)
+                    || all(&|p| p.y < sy0)
+            }
+        }
+    }
+
+    pub fn refine<'a>(
+        &self,
+        prim: PrimRef<'a>,
+        attrs: &Arc<Attributes>,
+        eye_splits: u32,
+        depth: u32,
+        out: &mut Vec<Piece<'a>>,
+        counts: &mut RefineCounts,
+    ) {
+        let b = prim.get().bound().padded(attrs.displacement_bound);
+        if b.is_empty() || self.outside_frustum(&b) {
+            counts.culled += 1;
+            return;
+        }
+        if depth >= MAX_SPLIT_DEPTH {
+            counts.eye_dropped += 1;
+            return;
+        }
+        let crosses_eye = self.camera.is_perspective() && f64::from(b.min.z) < self.eye_z();
+        if crosses_eye {
+            if eye_splits >= self.eye_splits {
+                counts.eye_dropped += 1;
+                return;
+            }
+            for child in prim.get().split() {
+                self.refine(
+                    PrimRef::Owned(child),
+                    attrs,
+                    eye_splits + 1,
+                    depth + 1,
+                    out,
+                    counts,
+                );
+            }
+            return;
+        }
+        if !prim.get().diceable() {
+            for child in prim.get().split() {
+                self.refine(
+                    PrimRef::Owned(child),
+                    attrs,
+                    eye_splits,
+                    depth + 1,
+                    out,
+                    counts,
+                );
+            }
+            return;
+        }
+        let mut raster = [
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        for c in b.corners() {
+            let Some(q) = self.project(c) else { continue };
+            raster = [
+                raster[0].min(q.x as f32),
+                raster[1].max(q.x as f32),
+                raster[2].min(q.y as f32),
+                raster[3].max(q.y as f32),
+            ];
+        }
+        if raster[1] < self.region[0]
+            || raster[0] > self.region[1]
+            || raster[3] < self.region[2]
+            || raster[2] > self.region[3]
+        {
+            counts.culled += 1;
+            return;
+        }
+        let (nu, nv) = self.dice_rates(prim.get(), attrs);
+        if (nu - 1) * (nv - 1) > self.grid_size && depth + 1 < MAX_SPLIT_DEPTH {
+            for child in prim.get().split() {
+                self.refine(
+                    PrimRef::Owned(child),
+                    attrs,
+                    eye_splits,
+                    depth + 1,
+                    out,
+                    counts,
+                );
+            }
+            return;
+        }
+        out.push(Piece {
+            prim,
+            attrs: attrs.clone(),
+            nu,
+            nv,
+            raster,
+            zmin: b.min.z,
+        });
+    }
+
+    /// Micropolygons per side so each is about `ShadingRate` pixels in area: the longest
+    /// raster-space row/column of a coarse test dice, divided by √ShadingRate.
+    fn dice_rates(&self, prim: &dyn Primitive, attrs: &Attributes) -> (usize, usize) {
+        let g = prim.dice(TEST_DICE, TEST_DICE);
+        let pts: Vec<Option<DVec3>> = g.p.iter().map(|&p| self.project(p)).collect();
+        let dist = |a: usize, b: usize| match (pts[a], pts[b]) {
+            (Some(a), Some(b)) => (a.truncate() - b.truncate()).length(),
+            _ => 0.0,
+        };
+        let (mut lu, mut lv) = (0.0f64, 0.0f64);
+        for j in 0..g.nv {
+            lu = lu.max(
+                (1..g.nu)
+                    .map(|i| dist(j * g.nu + i - 1, j * g.nu + i))
+                    .sum(),
+            );
+        }
+        for i in 0..g.nu {
+            lv = lv.max(
+                (1..g.nv)
+                    .map(|j| dist((j - 1) * g.nu + i, j * g.nu + i))
+                    .sum(),
+            );
+        }
+        let step = f64::from(attrs.shading_rate).sqrt();
+        let rate = |l: f64| -> usize {
+            let n = (l / step).ceil().clamp(1.0, 4096.0) as usize;
+            if attrs.dice_binary {
+                n.next_power_of_two()
+            } else {
+                n
+            }
+        };
+        (rate(lu) + 1, rate(lv) + 1)
+    }
+}

@@ -1,0 +1,249 @@
+//! Grid shading through `illume-shade`: the frame's shaders are bound once (parameters parsed,
+//! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
+//! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
+use glam::{DMat4, DVec4, Vec3};
+use illume_geom::Grid;
+use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
+use illume_shade::{
+    shade_surface, ShadingEnv, ShadingGrid, SpecularModel, Surface, TextureLookup, WarnOnce,
+};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::sync::Arc;
+
+pub(crate) struct Shaded {
+    pub ci: Vec<Vec3>,
+    pub oi: Vec<Vec3>,
+}
+
+/// A bound surface, or `None` for `Surface "null"`.
+type BoundSurface = Option<Arc<Surface>>;
+
+/// Everything shading needs that is the same for every grid of a frame.
+pub(crate) struct FrameShading<'a> {
+    /// Bound surfaces keyed by the address of the `Arc<Shader>` the attributes share (the frame
+    /// keeps those alive, so an address names one shader for the whole frame).
+    surfaces: HashMap<usize, BoundSurface>,
+    default_surface: Arc<Surface>,
+    /// Bound lights, index-aligned with `Frame::lights` (`None` when binding failed).
+    lights: Vec<Option<illume_shade::Light>>,
+    coordinate_systems: HashMap<String, DMat4>,
+    camera_from_world: DMat4,
+    screen_from_camera: DMat4,
+    ndc_from_camera: DMat4,
+    raster_from_camera: DMat4,
+    orthographic: bool,
+    specular_model: SpecularModel,
+    textures: Option<&'a dyn TextureLookup>,
+    pub warnings: WarnOnce,
+    pub nonfinite: AtomicU64,
+}
+
+fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
+    Diagnostic {
+        severity: Severity::Warning,
+        span: shader.span.clone(),
+        request: Some(request.to_string()),
+        message,
+    }
+}
+
+/// Projective camera → screen → NDC → raster maps (RI Spec 3.2 §4.1.1) as matrices, for the
+/// shaders' `transform("NDC", P)` (ReflMap, Listing 9.6).
+fn projections(frame: &Frame) -> (DMat4, DMat4, DMat4) {
+    let cam = &frame.camera;
+    let screen_from_camera = match cam.perspective_scale {
+        // (d·x, d·y, z, z): the divide by w = z gives d·x/z, d·y/z.
+        Some(d) => DMat4::from_cols(
+            DVec4::new(d, 0.0, 0.0, 0.0),
+            DVec4::new(0.0, d, 0.0, 0.0),
+            DVec4::new(0.0, 0.0, 1.0, 1.0),
+            DVec4::new(0.0, 0.0, 0.0, 0.0),
+        ),
+        None => DMat4::IDENTITY,
+    };
+    let [l, r, b, t] = cam.screen_window;
+    // NDC: (0,0) top-left to (1,1) bottom-right.
+    let ndc_from_screen = DMat4::from_cols(
+        DVec4::new(1.0 / (r - l), 0.0, 0.0, 0.0),
+        DVec4::new(0.0, -1.0 / (t - b), 0.0, 0.0),
+        DVec4::new(0.0, 0.0, 1.0, 0.0),
+        DVec4::new(-l / (r - l), t / (t - b), 0.0, 1.0),
+    );
+    let raster_from_ndc = DMat4::from_scale(glam::DVec3::new(
+        f64::from(cam.xres),
+        f64::from(cam.yres),
+        1.0,
+    ));
+    let ndc_from_camera = ndc_from_screen * screen_from_camera;
+    (
+        screen_from_camera,
+        ndc_from_camera,
+        raster_from_ndc * ndc_from_camera,
+    )
+}
+
+impl<'a> FrameShading<'a> {
+    /// Binds every surface and light of the frame; problems come back as warnings with the
+    /// span of the `Surface`/`LightSource` request.
+    pub fn new(
+        frame: &Frame,
+        textures: Option<&'a dyn TextureLookup>,
+    ) -> (FrameShading<'a>, Vec<Diagnostic>) {
+        let mut diags = Vec::new();
+        let default_surface = Arc::new(Surface::default_surface());
+        let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
+        for prim in &frame.primitives {
+            let Some(shader) = prim.attributes.surface.as_ref() else {
+                continue;
+            };
+            let key = Arc::as_ptr(shader) as usize;
+            if surfaces.contains_key(&key) {
+                continue;
+            }
+            let bound = if shader.name == "null" {
+                None
+            } else {
+                match illume_shade::surface(&shader.name, &shader.params) {
+                    Ok((s, warnings)) => {
+                        diags.extend(
+                            warnings
+                                .into_iter()
+                                .map(|w| diagnostic(shader, "Surface", w)),
+                        );
+                        Some(Arc::new(s))
+                    }
+                    Err(e) => {
+                        diags.push(diagnostic(
+                            shader,
+                            "Surface",
+                            format!("{e}; using defaultsurface"),
+                        ));
+                        Some(default_surface.clone())
+                    }
+                }
+            };
+            surfaces.insert(key, bound);
+        }
+        let lights = frame
+            .lights
+            .iter()
+            .map(|l| {
+                let s = &l.shader;
+                match illume_shade::light(&s.name, &s.params, s.camera_from_shader) {
+                    Ok((light, warnings)) => {
+                        diags.extend(
+                            warnings
+                                .into_iter()
+                                .map(|w| diagnostic(s, "LightSource", w)),
+                        );
+                        Some(light)
+                    }
+                    Err(e) => {
+                        diags.push(diagnostic(
+                            s,
+                            "LightSource",
+                            format!("{e}; the light is ignored"),
+                        ));
+                        None
+                    }
+                }
+            })
+            .collect();
+        let (screen_from_camera, ndc_from_camera, raster_from_camera) = projections(frame);
+        let specular_model =
+            SpecularModel::from_option(&frame.options.specular_model).unwrap_or_default();
+        let shading = FrameShading {
+            surfaces,
+            default_surface,
+            lights,
+            coordinate_systems: frame.coordinate_systems.iter().cloned().collect(),
+            camera_from_world: frame.camera.camera_from_world,
+            screen_from_camera,
+            ndc_from_camera,
+            raster_from_camera,
+            orthographic: !frame.camera.is_perspective(),
+            specular_model,
+            textures,
+            warnings: WarnOnce::new(),
+            nonfinite: AtomicU64::new(0),
+        };
+        (shading, diags)
+    }
+
+    fn surface_for(&self, attrs: &Attributes) -> BoundSurface {
+        match attrs.surface.as_ref() {
+            None => Some(self.default_surface.clone()),
+            Some(s) => self
+                .surfaces
+                .get(&(Arc::as_ptr(s) as usize))
+                .cloned()
+                .unwrap_or_else(|| Some(self.default_surface.clone())),
+        }
+    }
+
+    /// Shades one grid. `flip` (±1) orients the geometric normals as the attributes say.
+    ///
+    /// "object" space is not yet carried with the primitive, so shaders see the surface's shader
+    /// space there (the same space unless the Surface was declared under another transform).
+    pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32) -> Shaded {
+        let n = grid.len();
+        let cs = grid
+            .cs
+            .clone()
+            .unwrap_or_else(|| vec![Vec3::from(attrs.color); n]);
+        let os = grid
+            .os
+            .clone()
+            .unwrap_or_else(|| vec![Vec3::from(attrs.opacity); n]);
+        let Some(surface) = self.surface_for(attrs) else {
+            return Shaded {
+                ci: vec![Vec3::ZERO; n],
+                oi: os,
+            };
+        };
+        let mut g = ShadingGrid::new(grid.nu, grid.nv);
+        g.p.clone_from(&grid.p);
+        g.n = grid.n.iter().map(|v| *v * flip).collect();
+        g.ng = grid.ng.iter().map(|v| *v * flip).collect();
+        g.dpdu.clone_from(&grid.dpdu);
+        g.dpdv.clone_from(&grid.dpdv);
+        g.u.clone_from(&grid.u);
+        g.v.clone_from(&grid.v);
+        g.s.clone_from(&grid.s);
+        g.t.clone_from(&grid.t);
+        g.du = grid.du;
+        g.dv = grid.dv;
+        g.cs = cs;
+        g.os = os;
+        for var in &grid.vars {
+            g.set_var(&var.name, var.components, var.data.clone());
+        }
+        g.set_incident_from_p(self.orthographic);
+        let lights: Vec<&illume_shade::Light> = attrs
+            .lights
+            .iter()
+            .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
+            .collect();
+        let mut env = ShadingEnv::new();
+        env.camera_from_world = self.camera_from_world;
+        let camera_from_shader = attrs
+            .surface
+            .as_ref()
+            .map_or(DMat4::IDENTITY, |s| s.camera_from_shader);
+        env.camera_from_object = camera_from_shader;
+        env.camera_from_shader = camera_from_shader;
+        env.coordinate_systems = Some(&self.coordinate_systems);
+        env.screen_from_camera = self.screen_from_camera;
+        env.ndc_from_camera = self.ndc_from_camera;
+        env.raster_from_camera = self.raster_from_camera;
+        env.specular_model = self.specular_model;
+        env.textures = self.textures;
+        env.warnings = Some(&self.warnings);
+        let stats = shade_surface(&surface, &mut g, &lights, &env);
+        if stats.nonfinite > 0 {
+            self.nonfinite.fetch_add(stats.nonfinite as u64, Relaxed);
+        }
+        Shaded { ci: g.ci, oi: g.oi }
+    }
+}
