@@ -4,6 +4,7 @@
 #
 # Usage (from anywhere inside the repository):  docs/make_gallery.sh
 # Needs: cargo, and oiiotool (OpenImageIO) to convert TIFF to PNG.
+# RENDER=/path/to/render uses that binary instead of building one.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -12,11 +13,15 @@ mkdir -p "$gallery"
 
 command -v oiiotool >/dev/null || { echo "make_gallery: oiiotool (OpenImageIO) is needed to write PNGs" >&2; exit 1; }
 
-echo "make_gallery: building render (release)"
-cargo build --release --quiet -p render --manifest-path "$root/Cargo.toml"
-target_dir="$(cargo metadata --format-version 1 --no-deps --manifest-path "$root/Cargo.toml" \
-  | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')"
-render="$target_dir/release/render"
+if [ -n "${RENDER:-}" ]; then
+  render="$RENDER"
+else
+  echo "make_gallery: building render (release)"
+  cargo build --release --quiet -p render --manifest-path "$root/Cargo.toml"
+  target_dir="$(cargo metadata --format-version 1 --no-deps --manifest-path "$root/Cargo.toml" \
+    | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')"
+  render="$target_dir/release/render"
+fi
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -30,7 +35,7 @@ for rib in "$root"/rib/ch9/*.rib; do
   dir="$work/$name"
   mkdir -p "$dir"
   start=$(date +%s.%N)
-  if ! (cd "$dir" && "$render" "$rib"); then
+  if ! (cd "$dir" && "$render" -q "$rib"); then
     echo "make_gallery: render failed on $rib" >&2
     failed+=("$name")
     continue
