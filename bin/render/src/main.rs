@@ -1,4 +1,229 @@
-fn main() {
-    eprintln!("render: not built yet");
-    std::process::exit(2);
+//! `render`: RIB files in, images out. A thin layer over `illume-ri` and `illume-reyes`.
+//!
+//! Exit codes: 0 clean, 1 rendered with errors, 2 usage error or fatal.
+#![forbid(unsafe_code)]
+
+use clap::Parser;
+use illume_ri::{from_rib_diagnostic, Ri, Severity};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(
+    name = "render",
+    about = "Render RenderMan RIB files with the Illume REYES hider"
+)]
+struct Args {
+    /// No progress bar.
+    #[arg(short)]
+    q: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Print time per stage, counts and peak memory.
+    #[arg(long)]
+    stats: bool,
+    /// Crop window xmin xmax ymin ymax in NDC, overriding the file's CropWindow.
+    #[arg(long, num_args = 4, allow_negative_numbers = true)]
+    crop: Option<Vec<f32>>,
+    /// Only frames numbered a-b (or a single n).
+    #[arg(long)]
+    frames: Option<String>,
+    /// RIB files; `-` reads stdin.
+    #[arg(required = true)]
+    files: Vec<PathBuf>,
+}
+
+fn parse_frames(s: &str) -> Option<(i32, i32)> {
+    match s.split_once('-') {
+        Some((a, b)) => Some((a.trim().parse().ok()?, b.trim().parse().ok()?)),
+        None => s.trim().parse().ok().map(|n| (n, n)),
+    }
+}
+
+/// Peak resident memory from /proc/self/status (Linux), in kB.
+fn peak_memory_kb() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+fn main() -> ExitCode {
+    let args = match Args::try_parse() {
+        Ok(a) => a,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    let frames = match args.frames.as_deref().map(parse_frames) {
+        Some(None) => {
+            eprintln!("render: --frames expects a-b or n");
+            return ExitCode::from(2);
+        }
+        Some(r) => r,
+        None => None,
+    };
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = args.threads {
+        builder = builder.num_threads(n.max(1));
+    }
+    let pool = match builder.build() {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("render: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let show_progress = !args.q && std::io::stderr().is_terminal();
+    let mut errors = 0usize;
+    let mut fatal = false;
+    for file in &args.files {
+        let parser = match illume_rib::open(file) {
+            Ok(p) => p,
+            Err(e) => {
+                eprintln!("render: {}: {e}", file.display());
+                fatal = true;
+                continue;
+            }
+        };
+        let mut ri = Ri::new();
+        ri.set_frame_range(frames);
+        ri.set_texture_maker(Box::new(|req, _options| {
+            let warnings = illume_texture::make_from_request(req).map_err(|e| e.to_string())?;
+            for w in warnings {
+                eprintln!("render: warning: {}: {w}", req.name());
+            }
+            Ok(())
+        }));
+        if let Some(c) = &args.crop {
+            ri.set_crop_override(Some([c[0], c[1], c[2], c[3]]));
+        }
+        let mut parse_seconds = 0.0;
+        let mut t = Instant::now();
+        let report = |ri: &mut Ri| {
+            for d in ri.drain_diagnostics() {
+                eprintln!("{d}");
+            }
+        };
+        for item in parser {
+            match item {
+                Ok(req) => ri.request(req),
+                Err(d) => ri.report(from_rib_diagnostic(d)),
+            }
+            report(&mut ri);
+            let ready = ri.take_frames();
+            if ready.is_empty() {
+                continue;
+            }
+            parse_seconds += t.elapsed().as_secs_f64();
+            for frame in ready {
+                errors += render_frame(&pool, &frame, show_progress, args.stats, parse_seconds);
+            }
+            parse_seconds = 0.0;
+            t = Instant::now();
+        }
+        ri.finish();
+        report(&mut ri);
+        for frame in ri.take_frames() {
+            errors += render_frame(&pool, &frame, show_progress, args.stats, parse_seconds);
+        }
+        errors += ri.error_count();
+    }
+    if fatal {
+        ExitCode::from(2)
+    } else if errors > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// Renders and writes one frame; returns the number of errors.
+fn render_frame(
+    pool: &rayon::ThreadPool,
+    frame: &illume_ri::Frame,
+    show_progress: bool,
+    stats: bool,
+    parse_seconds: f64,
+) -> usize {
+    let bar = show_progress.then(|| {
+        let b = indicatif::ProgressBar::new(1);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{msg} [{bar:40}] {pos}/{len} buckets, ETA {eta}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b.set_message(match frame.number {
+            Some(n) => format!("frame {n}"),
+            None => "frame".to_string(),
+        });
+        b
+    });
+    let progress = |done: usize, total: usize| {
+        if let Some(b) = &bar {
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        }
+    };
+    // `limits texturememory` is in kilobytes.
+    let cache = illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
+    let settings = illume_reyes::RenderSettings {
+        progress: Some(&progress),
+        textures: Some(&cache),
+    };
+    let t = Instant::now();
+    let rendered = pool.install(|| illume_reyes::render(frame, &settings));
+    let render_seconds = t.elapsed().as_secs_f64();
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let mut errors = 0;
+    for w in &rendered.warnings {
+        eprintln!("{w}");
+        errors += usize::from(w.severity == Severity::Error);
+    }
+    let t = Instant::now();
+    for result in illume_reyes::write_displays(frame, &rendered) {
+        match result {
+            Ok(w) if w.framebuffer => {
+                eprintln!(
+                    "render: framebuffer display written to {}",
+                    w.path.display()
+                )
+            }
+            Ok(_) => {}
+            Err(e) => {
+                eprintln!("render: error: {e}");
+                errors += 1;
+            }
+        }
+    }
+    let write_seconds = t.elapsed().as_secs_f64();
+    if stats {
+        let s = &rendered.stats;
+        eprintln!(
+            "render: stats for frame {}",
+            frame.number.map_or("-".into(), |n| n.to_string())
+        );
+        eprintln!("  time (s)  parse {parse_seconds:.3}  split {:.3}  dice {:.3}*  shade {:.3}*  sample {:.3}*  filter {:.3}*  write {write_seconds:.3}  render wall {render_seconds:.3}", s.split_seconds, s.dice_seconds, s.shade_seconds, s.sample_seconds, s.filter_seconds);
+        eprintln!("            (* CPU seconds summed over threads)");
+        eprintln!(
+            "  counts    primitives {}  pieces {}  grids {}  micropolygons {}  samples {}  culled pieces {}  occluded grids {}  non-finite shaded points {}",
+            s.primitives, s.pieces, s.grids, s.micropolygons, s.samples, s.culled_pieces, s.occluded_grids, s.nonfinite
+        );
+        if render_seconds > 0.0 {
+            eprintln!(
+                "  rate      {:.0} micropolygons/s",
+                s.micropolygons as f64 / render_seconds
+            );
+        }
+        if let Some(kb) = peak_memory_kb() {
+            eprintln!("  memory    peak {:.1} MB (VmHWM)", kb as f64 / 1024.0);
+        }
+    }
+    errors
 }

@@ -11,6 +11,8 @@ pub enum DisplayError {
     Mode { name: String, mode: String },
     #[error(transparent)]
     Image(#[from] ImageError),
+    #[error(transparent)]
+    Shadow(#[from] illume_texture::TextureError),
 }
 
 /// What was written, so the CLI can say where a `framebuffer` went.
@@ -67,7 +69,11 @@ pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay,
     displays
         .iter()
         .map(|d| {
-            let Some(image) = display_image(r, &d.mode) else {
+            // `Display "shadow"` writes a shadow map (.sm) directly from depth, whatever the
+            // mode says: the same file `MakeShadow` makes from a zfile.
+            let shadow = d.kind == "shadow";
+            let mode = if shadow { "z" } else { d.mode.as_str() };
+            let Some(image) = display_image(r, mode) else {
                 return Err(DisplayError::Mode {
                     name: d.name.clone(),
                     mode: d.mode.clone(),
@@ -96,7 +102,15 @@ pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay,
                 max: q.max,
                 dither: q.dither,
             };
-            write_display(&path, &kind, &image, q, Some(&depth))?;
+            if shadow {
+                let opts = illume_texture::MakeOptions {
+                    source: "Display \"shadow\"".into(),
+                    ..Default::default()
+                };
+                illume_texture::make_shadow(&image, &depth, &path, &opts)?;
+            } else {
+                write_display(&path, &kind, &image, q, Some(&depth))?;
+            }
             Ok(WrittenDisplay {
                 path,
                 kind,

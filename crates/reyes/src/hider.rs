@@ -10,7 +10,7 @@ use glam::Vec3;
 use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 /// A diced, shaded grid in raster space.
@@ -25,6 +25,28 @@ struct ShadedGrid {
     backface: Vec<bool>,
     matte: bool,
     smooth: bool,
+}
+
+/// A piece's grid, shared by the buckets it overlaps: diced and shaded by the first bucket
+/// that needs it, dropped when the last one is done (DESIGN.md, "Parallelism and memory").
+struct GridSlot {
+    grid: Mutex<Option<Option<Arc<ShadedGrid>>>>,
+    /// Buckets that still have to visit this piece.
+    remaining: AtomicUsize,
+}
+
+impl GridSlot {
+    fn get(&self, make: impl FnOnce() -> Option<Arc<ShadedGrid>>) -> Option<Arc<ShadedGrid>> {
+        let mut g = self.grid.lock().unwrap_or_else(|e| e.into_inner());
+        g.get_or_insert_with(make).clone()
+    }
+
+    /// One overlapping bucket is done; the last one frees the grid.
+    fn release(&self) {
+        if self.remaining.fetch_sub(1, Relaxed) == 1 {
+            *self.grid.lock().unwrap_or_else(|e| e.into_inner()) = None;
+        }
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -136,8 +158,19 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     for l in &mut lists {
         l.sort_by(|&a, &b| pieces[a].zmin.total_cmp(&pieces[b].zmin).then(a.cmp(&b)));
     }
-    let grids: Vec<OnceLock<Option<Arc<ShadedGrid>>>> =
-        (0..pieces.len()).map(|_| OnceLock::new()).collect();
+    let mut overlaps = vec![0usize; pieces.len()];
+    for l in &lists {
+        for &id in l {
+            overlaps[id] += 1;
+        }
+    }
+    let grids: Vec<GridSlot> = overlaps
+        .into_iter()
+        .map(|n| GridSlot {
+            grid: Mutex::new(None),
+            remaining: AtomicUsize::new(n),
+        })
+        .collect();
     let counters = Counters::default();
     let done = AtomicUsize::new(0);
     let total = nbx * nby;
@@ -300,7 +333,7 @@ fn render_bucket(
     frame: &Frame,
     shading: &FrameShading,
     pieces: &[Piece],
-    grids: &[OnceLock<Option<Arc<ShadedGrid>>>],
+    grids: &[GridSlot],
     list: &[usize],
     [px0, px1, py0, py1]: [u32; 4],
     filter: &PixelFilter,
@@ -341,9 +374,9 @@ fn render_bucket(
             continue;
         }
         let t = Instant::now();
-        let grid = grids[id].get_or_init(|| dice_and_shade(frame, shading, piece, counters));
+        let grid = grids[id].get(|| dice_and_shade(frame, shading, piece, counters));
         shade_elapsed += ns(t);
-        let Some(g) = grid else { continue };
+        let Some(g) = grid.as_deref() else { continue };
         for j in 0..g.nv - 1 {
             for i in 0..g.nu - 1 {
                 let m = j * (g.nu - 1) + i;
@@ -381,6 +414,9 @@ fn render_bucket(
     counters
         .sample_ns
         .fetch_add(ns(t_sample).saturating_sub(shade_elapsed), Relaxed);
+    for &id in list {
+        grids[id].release();
+    }
 
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();

@@ -24,4 +24,4 @@ pub use declarations::Declarations;
 pub use diagnostic::{Diagnostic, Diagnostics, Severity};
 pub use frame::{Frame, FramePrimitive};
 pub use options::{DepthFilter, DisplaySpec, Options, Projection, QuantizeSpec};
-pub use state::{RequestSource, Ri, StreamParser, TextureMaker};
+pub use state::{from_rib_diagnostic, RequestSource, Ri, StreamParser, TextureMaker};

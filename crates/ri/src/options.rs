@@ -192,8 +192,10 @@ mod tests {
 
     #[test]
     fn crop_windows_tile_without_gaps() {
-        let mut o = Options::default();
-        o.crop = [0.0, 0.5, 0.0, 0.5];
+        let mut o = Options {
+            crop: [0.0, 0.5, 0.0, 0.5],
+            ..Options::default()
+        };
         let a = o.crop_pixels();
         o.crop = [0.5, 1.0, 0.5, 1.0];
         let b = o.crop_pixels();

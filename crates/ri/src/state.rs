@@ -120,7 +120,7 @@ impl Ri {
             archives: HashMap::new(),
             frames: Vec::new(),
             diagnostics: Diagnostics::default(),
-            parser: None,
+            parser: Some(Box::new(default_parser)),
             texture_maker: None,
             crop_override: None,
             frame_range: None,
@@ -583,14 +583,12 @@ impl Ri {
                 self.diagnostics
                     .warn(span, &name, "not supported yet (ignored)");
             }
-            ColorSamples { n_rgb, .. } => {
-                if n_rgb.len() != 9 {
-                    self.diagnostics.warn(
-                        span,
-                        &name,
-                        "only 3 RGB color samples are supported (ignored)",
-                    );
-                }
+            ColorSamples { n_rgb, .. } if n_rgb.len() != 9 => {
+                self.diagnostics.warn(
+                    span,
+                    &name,
+                    "only 3 RGB color samples are supported (ignored)",
+                );
             }
             PixelVariance(v) => o.pixel_variance = v,
             PixelSamples { x, y } => {
@@ -1503,4 +1501,22 @@ fn basis_matrix(b: &BasisSpec) -> Option<[f32; 16]> {
             _ => return None,
         },
     })
+}
+
+/// The `illume-rib` parser, with its diagnostics carried over.
+fn default_parser(reader: Box<dyn Read>, name: &str) -> RequestSource {
+    Box::new(illume_rib::Parser::new(reader, name).map(|r| r.map_err(from_rib_diagnostic)))
+}
+
+/// Converts a parser diagnostic into the RI one (same fields, same printed form).
+pub fn from_rib_diagnostic(d: illume_rib::Diagnostic) -> Diagnostic {
+    Diagnostic {
+        severity: match d.severity {
+            illume_rib::Severity::Warning => crate::Severity::Warning,
+            illume_rib::Severity::Error => crate::Severity::Error,
+        },
+        span: d.span,
+        request: d.request,
+        message: d.message,
+    }
 }

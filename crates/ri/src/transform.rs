@@ -19,7 +19,7 @@ pub fn to_rib(m: &DMat4) -> [f32; 16] {
 pub fn rotate(angle_degrees: f32, axis: [f32; 3]) -> Option<DMat4> {
     let axis = DVec3::from(axis.map(f64::from));
     let len = axis.length();
-    if !(len > 0.0) {
+    if len.is_nan() || len <= 0.0 {
         return None;
     }
     Some(DMat4::from_axis_angle(

@@ -1,0 +1,118 @@
+//! Built-in shading through real RIB: chapter 9's closed forms per pixel (issue 5 item 7).
+//!
+//! Scene: an orthographic unit sphere, one `distantlight` shining along +z from the camera, so
+//! at every point L = V = H = -z and N·L = N·H = cos θ = n_z. With jitter off the samples sit at
+//! the stratum centres, and the box-filtered pixel is the mean of the closed form over exactly
+//! those 16 positions: that mean, in f64, is the reference. Interior pixels only (object
+//! radius < 0.9): near the silhouette a pixel is part background and the normal turns faster
+//! than any finite ShadingRate follows. Threshold 1/255: one 8-bit code value.
+use illume_reyes::{render, RenderSettings, Rendered};
+use illume_ri::{from_rib_diagnostic, Ri, Severity};
+
+const RES: u32 = 100;
+const SPP: u32 = 4;
+
+fn render_rib(rib: &str) -> Rendered {
+    let mut ri = Ri::new();
+    for item in
+        illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "shading.rib")
+    {
+        match item {
+            Ok(r) => ri.request(r),
+            Err(d) => ri.report(from_rib_diagnostic(d)),
+        }
+    }
+    ri.finish();
+    let errors: Vec<_> = ri
+        .drain_diagnostics()
+        .into_iter()
+        .filter(|d| d.severity == Severity::Error)
+        .collect();
+    assert!(errors.is_empty(), "{errors:?}");
+    let frames = ri.take_frames();
+    assert_eq!(frames.len(), 1);
+    render(&frames[0], &RenderSettings::default())
+}
+
+fn sphere_scene(options: &str, surface: &str) -> String {
+    format!(
+        "Format {RES} {RES} 1\nScreenWindow -1.25 1.25 -1.25 1.25\nPixelSamples {SPP} {SPP}\n\
+         PixelFilter \"box\" 1 1\nHider \"hidden\" \"jitter\" [0]\n{options}\n\
+         WorldBegin\nLightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [0 0 0] \"to\" [0 0 1]\n\
+         ShadingRate 0.25\nShadingInterpolation \"smooth\"\n{surface}\nTranslate 0 0 5\n\
+         Sphere 1 -1 1 360\nWorldEnd\n"
+    )
+}
+
+/// Largest |pixel − mean of `model(n_z)` over the pixel's samples| over interior pixels.
+fn max_error(r: &Rendered, model: impl Fn(f64) -> f64) -> (f64, usize) {
+    let scale = 2.5 / f64::from(RES); // object units per pixel
+    let (mut worst, mut count) = (0.0f64, 0);
+    for py in 0..RES {
+        for px in 0..RES {
+            let mut sum = 0.0;
+            let mut interior = true;
+            for j in 0..SPP {
+                for i in 0..SPP {
+                    let x = -1.25 + (f64::from(px) + (f64::from(i) + 0.5) / f64::from(SPP)) * scale;
+                    let y = 1.25 - (f64::from(py) + (f64::from(j) + 0.5) / f64::from(SPP)) * scale;
+                    let r2 = x * x + y * y;
+                    interior &= r2 < 0.81;
+                    sum += model((1.0 - r2).max(0.0).sqrt());
+                }
+            }
+            if !interior {
+                continue;
+            }
+            let expected = sum / f64::from(SPP * SPP);
+            let got = f64::from(r.rgba[((py * RES + px) * 4) as usize]);
+            worst = worst.max((got - expected).abs());
+            count += 1;
+        }
+    }
+    (worst, count)
+}
+
+#[test]
+fn matte_sphere_equals_kd_cos_theta_per_pixel() {
+    let r = render_rib(&sphere_scene(
+        "",
+        "Surface \"matte\" \"Ka\" [0] \"Kd\" [0.8]",
+    ));
+    let (err, n) = max_error(&r, |c| 0.8 * c);
+    // π·0.9²·40² ≈ 4070 pixel centres lie inside; whole pixels inside are a little fewer.
+    assert!(n > 3500, "only {n} interior pixels");
+    eprintln!("matte: max error {err:.2e} over {n} interior pixels");
+    assert!(err < 1.0 / 255.0, "max error {err}");
+}
+
+#[test]
+fn plastic_sphere_equals_lambert_plus_blinn_under_both_specular_models() {
+    let plastic = "Surface \"plastic\" \"Ka\" [0] \"Kd\" [0.5] \"Ks\" [0.5] \"roughness\" [0.25]";
+    let r = render_rib(&sphere_scene("", plastic));
+    let (err, _) = max_error(&r, |c| 0.5 * c + 0.5 * c.powf(1.0 / 0.25));
+    eprintln!("plastic (blinn): max error {err:.2e}");
+    assert!(err < 1.0 / 255.0, "blinn: max error {err}");
+
+    let prman = "Option \"shading\" \"string specularmodel\" [\"prman\"]";
+    let r = render_rib(&sphere_scene(prman, plastic));
+    let (err, _) = max_error(&r, |c| 0.5 * c + 0.5 * c.powf(8.0 / 0.25));
+    eprintln!("plastic (prman): max error {err:.2e}");
+    assert!(err < 1.0 / 255.0, "prman: max error {err}");
+    // The two models differ visibly, so the option really switched the exponent.
+    let (diff, _) = max_error(&r, |c| 0.5 * c + 0.5 * c.powf(1.0 / 0.25));
+    assert!(
+        diff > 0.05,
+        "prman model indistinguishable from blinn ({diff})"
+    );
+}
+
+#[test]
+fn oren_nayar_with_zero_roughness_equals_matte() {
+    let r = render_rib(&sphere_scene(
+        "",
+        "Surface \"orennayar\" \"Ka\" [0] \"Kd\" [0.8] \"roughness\" [0]",
+    ));
+    let (err, _) = max_error(&r, |c| 0.8 * c);
+    assert!(err < 1.0 / 255.0, "max error {err}");
+}
