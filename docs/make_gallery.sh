@@ -14,7 +14,7 @@ mkdir -p "$gallery"
 command -v oiiotool >/dev/null || { echo "make_gallery: oiiotool (OpenImageIO) is needed to write PNGs" >&2; exit 1; }
 
 if [ -n "${RENDER:-}" ]; then
-  render="$RENDER"
+  render="$(realpath "$RENDER")"   # absolute: each scene renders in its own directory
 else
   echo "make_gallery: building render (release)"
   cargo build --release --quiet -p render --manifest-path "$root/Cargo.toml"
@@ -52,7 +52,9 @@ for rib in "$root"/rib/ch9/*.rib; do
   for tif in "${tifs[@]}"; do
     png="$gallery/$(basename "${tif%.*}").png"
     # Drop alpha (the gallery shows the images over the page, not composited) and write 8 bits.
-    oiiotool "$tif" --ch R,G,B -d uint8 -o "$png"
+    # No metadata (render time stamps, software name), so regenerating unchanged images gives
+    # byte-identical PNGs and no spurious diffs.
+    oiiotool --nosoftwareattrib "$tif" --ch R,G,B -d uint8 --eraseattrib ".*" -o "$png"
     made+=("$(printf '%-40s %6d bytes  (%s, %.1f s)' "${png#"$root"/}" "$(stat -c %s "$png")" "$name.rib" "$secs")")
   done
 done
