@@ -1,4 +1,0 @@
-fn main() {
-    eprintln!("bench: not built yet");
-    std::process::exit(2);
-}
