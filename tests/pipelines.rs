@@ -17,7 +17,7 @@ fn run_rib(rib: &str) -> Vec<Rendered> {
     }));
     let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
     let mut out = Vec::new();
-    let mut render_ready = |ri: &mut Ri, out: &mut Vec<Rendered>| {
+    let render_ready = |ri: &mut Ri, out: &mut Vec<Rendered>| {
         let errors: Vec<_> = ri
             .drain_diagnostics()
             .into_iter()
@@ -71,14 +71,19 @@ fn shadow_example_dir() -> PathBuf {
 /// An example RIB with its file names (`"depth.z"`, …) pointed into `dir`.
 fn example_rib(file: &str, dir: &Path) -> String {
     let text = std::fs::read_to_string(shadow_example_dir().join(file)).unwrap();
-    ["depth.z", "shadow.sm", "shadow_single.tif", "shadow_script.tif"]
-        .iter()
-        .fold(text, |t, name| {
-            t.replace(
-                &format!("\"{name}\""),
-                &format!("\"{}\"", dir.join(name).display()),
-            )
-        })
+    [
+        "depth.z",
+        "shadow.sm",
+        "shadow_single.tif",
+        "shadow_script.tif",
+    ]
+    .iter()
+    .fold(text, |t, name| {
+        t.replace(
+            &format!("\"{name}\""),
+            &format!("\"{}\"", dir.join(name).display()),
+        )
+    })
 }
 
 fn bits(r: &Rendered) -> Vec<u32> {
@@ -238,7 +243,10 @@ impl LitFraction {
         let (x0, y0) = (fx.floor(), fy.floor());
         let (ax, ay) = (fx - x0, fy - y0);
         let px = |i: f64, j: f64| self.ratio[j as usize * RES + i as usize];
-        let (x0, y0) = (x0.clamp(0.0, RES as f64 - 2.0), y0.clamp(0.0, RES as f64 - 2.0));
+        let (x0, y0) = (
+            x0.clamp(0.0, RES as f64 - 2.0),
+            y0.clamp(0.0, RES as f64 - 2.0),
+        );
         (1.0 - ay) * ((1.0 - ax) * px(x0, y0) + ax * px(x0 + 1.0, y0))
             + ay * ((1.0 - ax) * px(x0, y0 + 1.0) + ax * px(x0 + 1.0, y0 + 1.0))
     }
@@ -280,7 +288,10 @@ fn shadow_edge_lands_within_a_pixel_of_the_geometric_boundary_and_bias_removes_a
         }
         let mut crossing = None;
         let mut prev = sharp.at(cx + (r_px - 6.0) * dx, cy + (r_px - 6.0) * dy);
-        assert!(prev < 0.5, "direction {k}: inside the shadow is lit ({prev})");
+        assert!(
+            prev < 0.5,
+            "direction {k}: inside the shadow is lit ({prev})"
+        );
         let step = 0.01;
         let mut r = r_px - 6.0 + step;
         while r <= r_px + 6.0 {
@@ -308,7 +319,7 @@ fn shadow_edge_lands_within_a_pixel_of_the_geometric_boundary_and_bias_removes_a
     // Acne: lit ground well away from the shadow and the occluder, inside the spot's full-
     // intensity cone; count pixels darkened by more than 2%.
     let acne = |lf: &LitFraction| {
-        let (mut dark, mut total) = (0usize, 0usize);
+        let (mut dark, mut total, mut sum) = (0usize, 0usize, 0.0);
         for y in 0..RES {
             for x in 0..RES {
                 let (rx, ry) = (x as f64 + 0.5, y as f64 + 0.5);
@@ -323,21 +334,29 @@ fn shadow_edge_lands_within_a_pixel_of_the_geometric_boundary_and_bias_removes_a
                 let v = lf.ratio[y * RES + x];
                 assert!(v.is_finite(), "pixel {x},{y} unlit in the reference");
                 total += 1;
+                sum += v;
                 dark += usize::from(v < 0.98);
             }
         }
-        (dark as f64 / total as f64, total)
+        (dark as f64 / total as f64, total, sum / total as f64)
     };
-    let (acne_bias0, total) = acne(&LitFraction::new(&frames[3], &frames[1]));
-    let (acne_chapter, _) = acne(&LitFraction::new(&frames[4], &frames[1]));
-    let (acne_sharp, _) = acne(&sharp);
+    let (acne_bias0, total, mean_bias0) = acne(&LitFraction::new(&frames[3], &frames[1]));
+    let (acne_chapter, _, mean_chapter) = acne(&LitFraction::new(&frames[4], &frames[1]));
+    let (acne_sharp, _, _) = acne(&sharp);
     eprintln!(
-        "acne over {total} lit pixels: bias 0 → {acne_bias0:.4}, bias 0.01 → {acne_chapter:.4} \
-         (blur 0.01); bias 0.01, blur 0 → {acne_sharp:.4}"
+        "acne over {total} lit pixels: bias 0 → {acne_bias0:.4} darkened (mean lit fraction \
+         {mean_bias0:.3}), bias 0.01 → {acne_chapter:.4} (mean {mean_chapter:.4}) with blur 0.01; \
+         bias 0.01, blur 0 → {acne_sharp:.4}"
     );
     assert!(total > 3000, "lit region too small: {total}");
     assert!(acne_bias0 > 0.2, "bias 0 shows no acne: {acne_bias0}");
-    assert!(acne_chapter < 0.001, "the chapter's bias leaves acne: {acne_chapter}");
-    assert!(acne_sharp < 0.001, "the chapter's bias leaves acne: {acne_sharp}");
+    assert!(
+        acne_chapter < 0.001,
+        "the chapter's bias leaves acne: {acne_chapter}"
+    );
+    assert!(
+        acne_sharp < 0.001,
+        "the chapter's bias leaves acne: {acne_sharp}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
