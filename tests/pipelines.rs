@@ -76,6 +76,11 @@ fn example_rib(file: &str, dir: &Path) -> String {
         "shadow.sm",
         "shadow_single.tif",
         "shadow_script.tif",
+        "fig_noshadow.tif",
+        "fig_shadow.tif",
+        "fig_blur.tif",
+        "fig_acne.tif",
+        "fig_detached.tif",
     ]
     .iter()
     .fold(text, |t, name| {
@@ -166,6 +171,39 @@ fn shadow_sh_and_render_single_rib_write_identical_files() {
     let b = illume_imageio::read_image(&dir.join("shadow_script.tif")).unwrap();
     assert_eq!((a.width, a.height), (320, 240));
     assert_eq!(a.data, b.data);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Mean red over the whole image.
+fn mean_red(r: &Rendered) -> f64 {
+    let n = (r.width * r.height) as f64;
+    r.rgba.chunks_exact(4).map(|p| f64::from(p[0])).sum::<f64>() / n
+}
+
+#[test]
+fn figure_variants_order_as_the_chapter_describes() {
+    let dir = scratch("figures");
+    let f = run_rib(&example_rib("shadow_figures.rib", &dir));
+    assert_eq!(f.len(), 6, "depth frame and five figures");
+    let [none, chapter, blur, acne, detached] = [1, 2, 3, 4, 5].map(|k| mean_red(&f[k]));
+    eprintln!(
+        "mean red: no shadow {none:.4}, chapter {chapter:.4}, blur {blur:.4}, bias 0 {acne:.4}, \
+         bias 1.9 {detached:.4}"
+    );
+    // A shadow removes light; acne removes more; too much bias gives some of it back; a penumbra
+    // spreads the same shadow (its mean stays near the sharp one's).
+    assert!(
+        none > detached && detached > chapter,
+        "{none} {detached} {chapter}"
+    );
+    assert!(
+        acne < 0.8 * chapter,
+        "bias 0 should darken the lit ground: {acne} vs {chapter}"
+    );
+    assert!(
+        (blur - chapter).abs() < 0.05 * chapter,
+        "{blur} vs {chapter}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
