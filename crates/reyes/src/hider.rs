@@ -44,11 +44,12 @@ const SEAM_EPSILON: f64 = 1e-3;
 /// L²/8R, largest where the border curves tightly in raster space, e.g. the latitude circles
 /// near a sphere's pole facing the camera). The coarse grid's own border tells the curvature:
 /// vertex `k` lies `d_k` off the chord of its two neighbours, which for a uniformly curved
-/// border is 4× the sagitta of one segment; reaching `d/2` (twice the sagitta) covers the
+/// border is 4× the sagitta of one segment (counted only where the border bulges outward,
+/// the side the sliver is on); reaching `d/2` (twice the sagitta) covers the
 /// sliver, capped at a quarter of the segment's length. Only grid borders reach out, so
 /// semi-transparent surfaces get no double coverage inside a grid, and a flat border (a
 /// polygon's edge, a straight split line) reaches out only [`SEAM_EPSILON`].
-fn seam_reach(pts: &[Vec3]) -> Vec<f64> {
+fn seam_reach(pts: &[Vec3], inner: &[Vec3]) -> Vec<f64> {
     let n = pts.len();
     let p: Vec<glam::DVec3> = pts.iter().map(|q| q.as_dvec3()).collect();
     let dev: Vec<f64> = (0..n)
@@ -59,7 +60,14 @@ fn seam_reach(pts: &[Vec3]) -> Vec<f64> {
             let (a, b, c) = (p[k - 1], p[k], p[k + 1]);
             let (dx, dy) = (c.x - a.x, c.y - a.y);
             let l = (dx * dx + dy * dy).sqrt();
-            let d = ((dx * (b.y - a.y) - dy * (b.x - a.x)) / l).abs();
+            let side = |q: glam::DVec3| dx * (q.y - a.y) - dy * (q.x - a.x);
+            // Only a border bulging away from the grid's interior (the parallel row or column
+            // next to it) leaves a sliver on this side; a concave border overlaps its neighbour.
+            let s = side(b);
+            if s * side(inner[k].as_dvec3()) > 0.0 {
+                return 0.0;
+            }
+            let d = (s / l).abs();
             if l > 0.0 && d.is_finite() {
                 d
             } else {
@@ -367,9 +375,14 @@ fn dice_and_shade(
             }
         }
     }
-    let row = |j: usize| seam_reach(&pos[j * nu..(j + 1) * nu]);
-    let col = |i: usize| seam_reach(&(0..nv).map(|j| pos[j * nu + i]).collect::<Vec<_>>());
-    let seam = [row(0), row(nv - 1), col(0), col(nu - 1)];
+    let row = |j: usize| pos[j * nu..(j + 1) * nu].to_vec();
+    let col = |i: usize| (0..nv).map(|j| pos[j * nu + i]).collect::<Vec<_>>();
+    let seam = [
+        seam_reach(&row(0), &row(1)),
+        seam_reach(&row(nv - 1), &row(nv - 2)),
+        seam_reach(&col(0), &col(1)),
+        seam_reach(&col(nu - 1), &col(nu - 2)),
+    ];
     counters.grids.fetch_add(1, Relaxed);
     counters
         .micropolygons
