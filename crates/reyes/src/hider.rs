@@ -30,8 +30,8 @@ struct ShadedGrid {
     smooth: bool,
 }
 
-/// Floor of a border segment's outward reach: absorbs f32 rounding between the bit-identical
-/// shared vertices of neighbouring grids (RI-side flat seams need nothing more).
+/// Floor of a border segment's outward reach: covers slivers thinner than the curvature
+/// estimate resolves (a border diced with one segment has no estimate at all).
 const SEAM_EPSILON: f64 = 1e-3;
 
 /// How far (raster pixels) each segment of a grid-border polyline is pushed outward when
