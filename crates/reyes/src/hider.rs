@@ -23,8 +23,70 @@ struct ShadedGrid {
     oi: Vec<Vec3>,
     /// Per micropolygon: culled as a back face (Sides 1).
     backface: Vec<bool>,
+    /// Outward reach (raster pixels) of each border segment, for the rows `j = 0`,
+    /// `j = nv−1` and the columns `i = 0`, `i = nu−1`: see [`seam_reach`].
+    seam: [Vec<f64>; 4],
     matte: bool,
     smooth: bool,
+}
+
+/// Floor of a border segment's outward reach: covers slivers thinner than the curvature
+/// estimate resolves (a border diced with one segment has no estimate at all).
+const SEAM_EPSILON: f64 = 1e-3;
+
+/// How far (raster pixels) each segment of a grid-border polyline is pushed outward when
+/// sampling, so seams between neighbouring grids overlap instead of cracking.
+///
+/// Why: neighbouring pieces are diced at their own rates, so a shared border is a T-junction:
+/// the coarse grid's segment is a straight chord between two vertices on the curved border,
+/// while the fine grid follows the curve. Where the curve bulges away from the coarse grid the
+/// sliver between chord and curve belongs to neither grid (its width is the chord's sagitta
+/// L²/8R, largest where the border curves tightly in raster space, e.g. the latitude circles
+/// near a sphere's pole facing the camera). The coarse grid's own border tells the curvature:
+/// vertex `k` lies `d_k` off the chord of its two neighbours, which for a uniformly curved
+/// border is 4× the sagitta of one segment (counted only where the border bulges outward,
+/// the side the sliver is on); reaching `d/2` (twice the sagitta) covers the
+/// sliver, capped at a quarter of the segment's length. Only grid borders reach out, so
+/// semi-transparent surfaces get no double coverage inside a grid, and a flat border (a
+/// polygon's edge, a straight split line) reaches out only [`SEAM_EPSILON`].
+fn seam_reach(pts: &[Vec3], inner: &[Vec3]) -> Vec<f64> {
+    let n = pts.len();
+    let p: Vec<glam::DVec3> = pts.iter().map(|q| q.as_dvec3()).collect();
+    let dev: Vec<f64> = (0..n)
+        .map(|k| {
+            if k == 0 || k + 1 == n {
+                return 0.0;
+            }
+            let (a, b, c) = (p[k - 1], p[k], p[k + 1]);
+            let (dx, dy) = (c.x - a.x, c.y - a.y);
+            let l = (dx * dx + dy * dy).sqrt();
+            let side = |q: glam::DVec3| dx * (q.y - a.y) - dy * (q.x - a.x);
+            // Only a border bulging away from the grid's interior (the parallel row or column
+            // next to it) leaves a sliver on this side; a concave border overlaps its neighbour.
+            let s = side(b);
+            if s * side(inner[k].as_dvec3()) > 0.0 {
+                return 0.0;
+            }
+            let d = (s / l).abs();
+            if l > 0.0 && d.is_finite() {
+                d
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    (0..n.saturating_sub(1))
+        .map(|k| {
+            let inner = |i: usize| if n >= 3 { dev[i.clamp(1, n - 2)] } else { 0.0 };
+            let len = (p[k + 1].truncate() - p[k].truncate()).length();
+            let r = (0.5 * inner(k).max(inner(k + 1))).min(0.25 * len);
+            if r.is_finite() {
+                r.max(0.0) + SEAM_EPSILON
+            } else {
+                SEAM_EPSILON
+            }
+        })
+        .collect()
 }
 
 /// A piece's grid, shared by the buckets it overlaps: diced and shaded by the first bucket
@@ -313,6 +375,14 @@ fn dice_and_shade(
             }
         }
     }
+    let row = |j: usize| pos[j * nu..(j + 1) * nu].to_vec();
+    let col = |i: usize| (0..nv).map(|j| pos[j * nu + i]).collect::<Vec<_>>();
+    let seam = [
+        seam_reach(&row(0), &row(1)),
+        seam_reach(&row(nv - 1), &row(nv - 2)),
+        seam_reach(&col(0), &col(1)),
+        seam_reach(&col(nu - 1), &col(nu - 2)),
+    ];
     counters.grids.fetch_add(1, Relaxed);
     counters
         .micropolygons
@@ -324,6 +394,7 @@ fn dice_and_shade(
         ci: shaded.ci,
         oi: shaded.oi,
         backface,
+        seam,
         matte: a.matte,
         smooth: a.smooth_shading,
     }))
@@ -390,10 +461,20 @@ fn render_bucket(
                     continue;
                 }
                 let order = ((id as u64) << 32) | m as u64;
-                for tri in [[quad[0], quad[1], quad[2]], [quad[0], quad[2], quad[3]]] {
+                // Border edges of this micropolygon reach outward (see `seam_reach`); edges
+                // inside the grid use the exact tie rule.
+                let bottom = if j == 0 { g.seam[0][i] } else { 0.0 };
+                let top = if j + 2 == g.nv { g.seam[1][i] } else { 0.0 };
+                let left = if i == 0 { g.seam[2][j] } else { 0.0 };
+                let right = if i + 2 == g.nu { g.seam[3][j] } else { 0.0 };
+                for (tri, reach) in [
+                    ([quad[0], quad[1], quad[2]], [bottom, right, 0.0]),
+                    ([quad[0], quad[2], quad[3]], [0.0, top, left]),
+                ] {
                     sample_triangle(
                         g,
                         tri,
+                        reach,
                         a,
                         order,
                         &pos,
@@ -510,6 +591,7 @@ fn render_bucket(
 fn sample_triangle(
     g: &ShadedGrid,
     tri: [usize; 3],
+    mut reach: [f64; 3],
     first: usize,
     order: u64,
     pos: &[(f32, f32)],
@@ -537,12 +619,15 @@ fn sample_triangle(
     if ar < 0.0 {
         v.swap(1, 2);
         idx.swap(1, 2);
+        // Edges v0→v1, v1→v2, v2→v0 are now the old v2→v0, v1→v2 (reversed), v0→v1.
+        reach = [reach[2], reach[1], reach[0]];
         ar = -ar;
     }
-    let xmin = v.iter().map(|p| p.x).fold(f32::INFINITY, f32::min);
-    let xmax = v.iter().map(|p| p.x).fold(f32::NEG_INFINITY, f32::max);
-    let ymin = v.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
-    let ymax = v.iter().map(|p| p.y).fold(f32::NEG_INFINITY, f32::max);
+    let grow = reach.iter().copied().fold(0.0f64, f64::max) as f32;
+    let xmin = v.iter().map(|p| p.x).fold(f32::INFINITY, f32::min) - grow;
+    let xmax = v.iter().map(|p| p.x).fold(f32::NEG_INFINITY, f32::max) + grow;
+    let ymin = v.iter().map(|p| p.y).fold(f32::INFINITY, f32::min) - grow;
+    let ymax = v.iter().map(|p| p.y).fold(f32::NEG_INFINITY, f32::max) + grow;
     let qx0 = (xmin.floor() as i32 - sx0).max(0);
     let qx1 = (xmax.floor() as i32 - sx0).min(sw as i32 - 1);
     let qy0 = (ymin.floor() as i32 - sy0).max(0);
@@ -552,9 +637,13 @@ fn sample_triangle(
     }
     let _ = spp;
     let vd = v.map(|p| p.as_dvec3());
-    // Edge functions with a top-left tie rule so a sample on a shared edge counts once.
-    let edge = |a: glam::DVec3, b: glam::DVec3, x: f64, y: f64| -> bool {
+    // Edge functions with a top-left tie rule so a sample on a shared edge counts once; a grid
+    // border edge instead accepts samples up to `reach` pixels outside it.
+    let edge = |a: glam::DVec3, b: glam::DVec3, r: f64, x: f64, y: f64| -> bool {
         let e = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
+        if r > 0.0 {
+            return e > -r * (b.x - a.x).hypot(b.y - a.y);
+        }
         e > 0.0 || (e == 0.0 && (b.y < a.y || (b.y == a.y && b.x > a.x)))
     };
     let inv_z = vd.map(|p| 1.0 / p.z);
@@ -563,9 +652,9 @@ fn sample_triangle(
             let base = (qy as usize * sw + qx as usize) * n_per;
             for s in base..base + n_per {
                 let (x, y) = (f64::from(pos[s].0), f64::from(pos[s].1));
-                if !(edge(vd[0], vd[1], x, y)
-                    && edge(vd[1], vd[2], x, y)
-                    && edge(vd[2], vd[0], x, y))
+                if !(edge(vd[0], vd[1], reach[0], x, y)
+                    && edge(vd[1], vd[2], reach[1], x, y)
+                    && edge(vd[2], vd[0], reach[2], x, y))
                 {
                     continue;
                 }
