@@ -1,8 +1,10 @@
 //! Displays that other stages read back: `Display "shadow"` writes a shadow map directly.
 use glam::Vec3;
 use illume_reyes::{render, write_displays, RenderSettings};
-use illume_ri::{from_rib_diagnostic, Ri};
+mod support;
+
 use illume_texture::{LookupOptions, TextureCache, TextureKind};
+use support::frames;
 
 #[test]
 fn shadow_display_writes_a_shadow_map_that_shadows_behind_the_surface() {
@@ -17,15 +19,7 @@ fn shadow_display_writes_a_shadow_map_that_shadows_behind_the_surface() {
          Polygon \"P\" [-10 -10 5  10 -10 5  10 10 5  -10 10 5]\nWorldEnd\n",
         sm.display()
     );
-    let mut ri = Ri::new();
-    for item in illume_rib::Parser::new(std::io::Cursor::new(rib.into_bytes()), "shadow.rib") {
-        match item {
-            Ok(r) => ri.request(r),
-            Err(d) => ri.report(from_rib_diagnostic(d)),
-        }
-    }
-    ri.finish();
-    let frames = ri.take_frames();
+    let frames = frames(&rib, None);
     let rendered = render(&frames[0], &RenderSettings::default());
     for written in write_displays(&frames[0], &rendered) {
         written.unwrap();

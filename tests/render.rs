@@ -1,27 +1,10 @@
 //! End-to-end: RIB text → parser → RI state → REYES hider, checked against closed forms.
 use illume_reyes::{render, RenderSettings, Rendered};
-use illume_ri::{from_rib_diagnostic, Frame, Ri, Severity};
-use std::f64::consts::PI;
+mod support;
 
-fn frames(rib: &str, crop: Option<[f32; 4]>) -> Vec<Frame> {
-    let mut ri = Ri::new();
-    ri.set_crop_override(crop);
-    let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
-    for item in parser {
-        match item {
-            Ok(r) => ri.request(r),
-            Err(d) => ri.report(from_rib_diagnostic(d)),
-        }
-    }
-    ri.finish();
-    let diags = ri.drain_diagnostics();
-    let errors: Vec<_> = diags
-        .iter()
-        .filter(|d| d.severity == Severity::Error)
-        .collect();
-    assert!(errors.is_empty(), "{errors:?}");
-    ri.take_frames()
-}
+use illume_ri::{from_rib_diagnostic, Ri};
+use std::f64::consts::PI;
+use support::frames;
 
 fn render_one(rib: &str) -> Rendered {
     let f = frames(rib, None);

@@ -7,29 +7,15 @@
 //! radius < 0.9): near the silhouette a pixel is part background and the normal turns faster
 //! than any finite ShadingRate follows. Threshold 1/255: one 8-bit code value.
 use illume_reyes::{render, RenderSettings, Rendered};
-use illume_ri::{from_rib_diagnostic, Ri, Severity};
+mod support;
+
+use support::frames;
 
 const RES: u32 = 100;
 const SPP: u32 = 4;
 
 fn render_rib(rib: &str) -> Rendered {
-    let mut ri = Ri::new();
-    for item in
-        illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "shading.rib")
-    {
-        match item {
-            Ok(r) => ri.request(r),
-            Err(d) => ri.report(from_rib_diagnostic(d)),
-        }
-    }
-    ri.finish();
-    let errors: Vec<_> = ri
-        .drain_diagnostics()
-        .into_iter()
-        .filter(|d| d.severity == Severity::Error)
-        .collect();
-    assert!(errors.is_empty(), "{errors:?}");
-    let frames = ri.take_frames();
+    let frames = frames(rib, None);
     assert_eq!(frames.len(), 1);
     render(&frames[0], &RenderSettings::default())
 }
@@ -144,12 +130,7 @@ fn bumpy_with_a_constant_map_grows_the_sphere_by_km() {
          Sphere 1 -1 1 360\nWorldEnd\n",
         map.display()
     );
-    let mut ri = Ri::new();
-    for item in illume_rib::Parser::new(std::io::Cursor::new(rib.into_bytes()), "bumpy.rib") {
-        ri.request(item.unwrap());
-    }
-    ri.finish();
-    let frames = ri.take_frames();
+    let frames = frames(&rib, None);
     let cache = TextureCache::new(1 << 22);
     let settings = RenderSettings {
         textures: Some(&cache),
