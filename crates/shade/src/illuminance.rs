@@ -37,6 +37,17 @@ pub struct Illuminance<'s> {
     pub cone: Option<(Vec3, f32)>,
 }
 
+impl Illuminance<'static> {
+    /// `illuminance (P, N, PI/2)` over every category: the loop of the built-in `diffuse()`,
+    /// `specular()` and the chapter's `LocIllum*` functions.
+    pub fn hemisphere(n: Vec3) -> Illuminance<'static> {
+        Illuminance {
+            category: "",
+            cone: Some((n, std::f32::consts::FRAC_PI_2)),
+        }
+    }
+}
+
 impl<'l> LightCache<'l> {
     /// Runs an illuminance loop at point `i`: `body(light, L, Cl)` for each non-ambient light
     /// whose `illuminate`/`solar` cone included the point, that matches the category, and whose
@@ -73,10 +84,7 @@ impl<'l> LightCache<'l> {
     /// `illuminance(P, N, PI/2)`. `n` unit.
     pub fn diffuse(&self, i: usize, n: Vec3) -> Vec3 {
         let mut c = Vec3::ZERO;
-        let sel = Illuminance {
-            category: "",
-            cone: Some((n, std::f32::consts::FRAC_PI_2)),
-        };
+        let sel = Illuminance::hemisphere(n);
         self.illuminance(i, sel, |light, l, cl| {
             c += cl * ((1.0 - light.nondiffuse()) * lighting::diffuse_term(n, l));
         });
@@ -94,10 +102,7 @@ impl<'l> LightCache<'l> {
         model: SpecularModel,
     ) -> Vec3 {
         let mut c = Vec3::ZERO;
-        let sel = Illuminance {
-            category: "",
-            cone: Some((n, std::f32::consts::FRAC_PI_2)),
-        };
+        let sel = Illuminance::hemisphere(n);
         self.illuminance(i, sel, |light, l, cl| {
             c += cl
                 * ((1.0 - light.nonspecular()) * lighting::blinn_phong(n, v, l, roughness, model));
@@ -108,10 +113,7 @@ impl<'l> LightCache<'l> {
     /// RI `phong(N, V, size)`: `Σ Cl (1 - __nonspecular) max(0, R·normalize(L))^size`.
     pub fn phong(&self, i: usize, n: Vec3, v: Vec3, size: f32) -> Vec3 {
         let mut c = Vec3::ZERO;
-        let sel = Illuminance {
-            category: "",
-            cone: Some((n, std::f32::consts::FRAC_PI_2)),
-        };
+        let sel = Illuminance::hemisphere(n);
         self.illuminance(i, sel, |light, l, cl| {
             c += cl * ((1.0 - light.nonspecular()) * lighting::phong_term(n, v, l, size));
         });
@@ -122,10 +124,7 @@ impl<'l> LightCache<'l> {
     /// skipped, the rest scaled by `1 - __nondiffuse`).
     pub fn oren_nayar(&self, i: usize, n: Vec3, v: Vec3, roughness: f32) -> Vec3 {
         let mut c = Vec3::ZERO;
-        let sel = Illuminance {
-            category: "",
-            cone: Some((n, std::f32::consts::FRAC_PI_2)),
-        };
+        let sel = Illuminance::hemisphere(n);
         self.illuminance(i, sel, |light, l, cl| {
             let nondiff = light.nondiffuse();
             if nondiff < 1.0 {
@@ -146,10 +145,7 @@ impl<'l> LightCache<'l> {
         yroughness: f32,
     ) -> Vec3 {
         let mut c = Vec3::ZERO;
-        let sel = Illuminance {
-            category: "",
-            cone: Some((n, std::f32::consts::FRAC_PI_2)),
-        };
+        let sel = Illuminance::hemisphere(n);
         self.illuminance(i, sel, |light, l, cl| {
             let nonspec = light.nonspecular();
             if nonspec < 1.0 {
@@ -164,10 +160,7 @@ impl<'l> LightCache<'l> {
     /// `LocIllumGlossy(N, V, roughness, sharpness)`, Listing 9.13.
     pub fn glossy(&self, i: usize, n: Vec3, v: Vec3, roughness: f32, sharpness: f32) -> Vec3 {
         let mut c = Vec3::ZERO;
-        let sel = Illuminance {
-            category: "",
-            cone: Some((n, std::f32::consts::FRAC_PI_2)),
-        };
+        let sel = Illuminance::hemisphere(n);
         self.illuminance(i, sel, |light, l, cl| {
             let nonspec = light.nonspecular();
             if nonspec < 1.0 {
