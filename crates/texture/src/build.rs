@@ -185,10 +185,16 @@ pub(crate) fn image_to_level(
     ))
 }
 
-/// Builds a plain mip-mapped texture (`MakeTexture`, `txmake in out`).
-pub fn make_texture(input: &Image, out: &Path, opts: &MakeOptions) -> Result<(), TextureError> {
+/// Level 0 resized as `-resize` says, then the filtered pyramid, all with `wrap` at the edges;
+/// shared by the plain and lat-long builders (cube faces are filtered face by face instead).
+fn resized_pyramid(
+    input: &Image,
+    out: &Path,
+    opts: &MakeOptions,
+    wrap: [WrapMode; 2],
+) -> Result<(Vec<Level>, Vec<String>), TextureError> {
     let (mut level0, names) = image_to_level(input, out)?;
-    let r = opts.resampler(opts.wrap);
+    let r = opts.resampler(wrap);
     let (w, h) = (
         opts.resize.apply(level0.width),
         opts.resize.apply(level0.height),
@@ -196,7 +202,12 @@ pub fn make_texture(input: &Image, out: &Path, opts: &MakeOptions) -> Result<(),
     if (w, h) != (level0.width, level0.height) {
         level0 = resample(&level0, w, h, &r);
     }
-    let levels = build_pyramid(level0, &r);
+    Ok((build_pyramid(level0, &r), names))
+}
+
+/// Builds a plain mip-mapped texture (`MakeTexture`, `txmake in out`).
+pub fn make_texture(input: &Image, out: &Path, opts: &MakeOptions) -> Result<(), TextureError> {
+    let (levels, names) = resized_pyramid(input, out, opts, opts.wrap)?;
     write_tx(
         out,
         &names,
@@ -214,17 +225,8 @@ pub fn make_latlong_environment(
     out: &Path,
     opts: &MakeOptions,
 ) -> Result<(), TextureError> {
-    let (mut level0, names) = image_to_level(input, out)?;
     let wrap = [WrapMode::Periodic, WrapMode::Clamp];
-    let r = opts.resampler(wrap);
-    let (w, h) = (
-        opts.resize.apply(level0.width),
-        opts.resize.apply(level0.height),
-    );
-    if (w, h) != (level0.width, level0.height) {
-        level0 = resample(&level0, w, h, &r);
-    }
-    let levels = build_pyramid(level0, &r);
+    let (levels, names) = resized_pyramid(input, out, opts, wrap)?;
     let mut attrs = opts.base_attributes("LatLong Environment", wrap);
     attrs.push((
         "envmap",
