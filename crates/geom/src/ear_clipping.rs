@@ -254,19 +254,24 @@ mod tests {
         #[test]
         fn star_polygons_with_a_hole_keep_their_area(
             radii in proptest::collection::vec(0.5f64..3.0, 3..40),
-            hole in 0.0f64..0.45,
+            hole_fraction in 0.0f64..0.9,
             hole_sides in 3usize..9,
         ) {
-            // Star-shaped about the origin (angles increase), so the polygon is simple and a
-            // hole of radius < 0.5 around the origin lies inside it.
+            // Star-shaped about the origin (angles increase), so the polygon is simple. Every
+            // edge spans an angle of 2π/n between vertices at radius ≥ min(radii), so it stays
+            // at least min(radii)·cos(π/n) from the origin: a hole inside that radius lies
+            // inside the polygon (a radius-0.5 triangle's inscribed circle is only 0.25).
             let n = radii.len();
+            let inradius = radii.iter().copied().fold(f64::INFINITY, f64::min)
+                * (std::f64::consts::PI / n as f64).cos();
+            let hole = hole_fraction * inradius;
             let outer: Vec<DVec2> = radii
                 .iter()
                 .enumerate()
                 .map(|(i, r)| DVec2::from_angle(i as f64 / n as f64 * std::f64::consts::TAU) * *r)
                 .collect();
             let mut loops = vec![outer];
-            if hole > 0.05 {
+            if hole_fraction > 0.05 {
                 loops.push(
                     (0..hole_sides)
                         .map(|i| DVec2::from_angle(i as f64 / hole_sides as f64 * std::f64::consts::TAU) * hole)
