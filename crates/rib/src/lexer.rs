@@ -166,6 +166,9 @@ pub(crate) fn parse_number(text: &[u8]) -> Result<Token, String> {
     }
 }
 
+/// The UTF-8 encoding of U+FEFF.
+const UTF8_BOM: &[u8] = &[0xef, 0xbb, 0xbf];
+
 impl<R: Read> Lexer<R> {
     pub(crate) fn new(reader: R) -> Self {
         Lexer {
@@ -280,6 +283,11 @@ impl<R: Read> Lexer<R> {
         true
     }
 
+    /// A UTF-8 byte-order mark at the very start of the stream.
+    fn at_utf8_bom(&mut self) -> bool {
+        self.abs() == 0 && self.ensure(UTF8_BOM.len()) && self.buf[self.pos..].starts_with(UTF8_BOM)
+    }
+
     fn newline(&mut self) {
         self.line += 1;
         self.line_start = self.abs();
@@ -323,6 +331,12 @@ impl<R: Read> Lexer<R> {
                 }
                 b'0'..=b'9' | b'+' | b'-' | b'.' => return self.word(true),
                 b'a'..=b'z' | b'A'..=b'Z' | b'_' => return self.word(false),
+                0xef if self.at_utf8_bom() => {
+                    // Editors on Windows save RIB as UTF-8 with a byte-order mark: invisible text,
+                    // not the binary encoding that other bytes >= 0x80 start.
+                    self.pos += UTF8_BOM.len();
+                    self.line_start = self.abs();
+                }
                 0x80..=0xff => {
                     if let Some(t) = self.binary()? {
                         return Ok(t);

@@ -337,6 +337,13 @@ pub(crate) fn build(name: &str, args: Vec<Arg>) -> Result<Request, SignatureErro
                 nz,
             }
         }
+        // With no arguments DepthOfField turns depth of field off (a pinhole camera, RI 3.2
+        // §4.1.3: an infinite fstop), as PRMan and Aqsis read it.
+        "DepthOfField" if a.items.peek().is_none() => R::DepthOfField {
+            fstop: f32::INFINITY,
+            focal_length: 0.0,
+            focal_distance: 0.0,
+        },
         "DepthOfField" => {
             let [fstop, focal_length, focal_distance] = a.floats()?;
             R::DepthOfField {
@@ -836,7 +843,8 @@ pub(crate) fn emit<S: Sink>(req: &Request, s: &mut S) -> io::Result<()> {
             fstop,
             focal_length,
             focal_distance,
-        } => s.scalars(&[*fstop, *focal_length, *focal_distance])?,
+        } if fstop.is_finite() => s.scalars(&[*fstop, *focal_length, *focal_distance])?,
+        R::DepthOfField { .. } => {}
         R::Shutter { open, close } => s.scalars(&[*open, *close])?,
         R::PixelSamples { x, y } => s.scalars(&[*x, *y])?,
         R::PixelFilter {

@@ -220,3 +220,20 @@ fn binary_nan_is_an_error() {
     );
     assert_eq!(names, ["WorldBegin"]);
 }
+
+#[test]
+fn utf8_byte_order_mark_at_the_start_is_skipped_and_columns_ignore_it() {
+    let (diags, names) = run(b"\xef\xbb\xbfWorldBegin\nSphere 1 -1 1\n");
+    assert_eq!(names, ["WorldBegin"]);
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    assert_eq!(
+        diags[0].headline(),
+        "scene.rib:2:1: error: Sphere: expected 4 numbers, found 3"
+    );
+}
+
+#[test]
+fn byte_order_mark_bytes_after_the_start_are_still_binary_rib() {
+    let (diags, _) = run(b"WorldBegin\n\xef\xbb\xbf");
+    assert!(!diags.is_empty(), "a BOM in mid-stream is not text");
+}

@@ -151,6 +151,15 @@ fn table() -> Vec<(String, R)> {
             },
         ),
         (
+            // No arguments: depth of field off (pinhole), an infinite fstop.
+            t("DepthOfField"),
+            R::DepthOfField {
+                fstop: f32::INFINITY,
+                focal_length: 0.0,
+                focal_distance: 0.0,
+            },
+        ),
+        (
             t("Shutter 0 1"),
             R::Shutter {
                 open: 0.0,
