@@ -2,59 +2,11 @@
 //! `MakeShadow`/`txmake -shadow`, beauty pass through `shadowspot`. Checks the two forms of
 //! `rib/pipelines/shadow/` agree, the shadow edge lands where geometry puts it, and bias removes
 //! self-shadowing acne.
-use illume_reyes::{render, write_displays, RenderSettings, Rendered};
-use illume_ri::{from_rib_diagnostic, Ri, Severity};
-use std::path::{Path, PathBuf};
+mod support;
 
-/// What `render` does with one RIB stream: frames render in file order as soon as they end,
-/// displays are written, and Make* requests run between frames so they see earlier frames' files.
-fn run_rib(rib: &str) -> Vec<Rendered> {
-    let mut ri = Ri::new();
-    ri.set_texture_maker(Box::new(|req, _options| {
-        illume_texture::make_from_request(req)
-            .map(|_warnings| ())
-            .map_err(|e| e.to_string())
-    }));
-    let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
-    let mut out = Vec::new();
-    let render_ready = |ri: &mut Ri, out: &mut Vec<Rendered>| {
-        let errors: Vec<_> = ri
-            .drain_diagnostics()
-            .into_iter()
-            .filter(|d| d.severity == Severity::Error)
-            .collect();
-        assert!(errors.is_empty(), "{errors:?}");
-        for frame in ri.take_frames() {
-            let cache =
-                illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
-            let settings = RenderSettings {
-                progress: None,
-                textures: Some(&cache),
-            };
-            let r = render(&frame, &settings);
-            let errors: Vec<_> = r
-                .warnings
-                .iter()
-                .filter(|d| d.severity == Severity::Error)
-                .collect();
-            assert!(errors.is_empty(), "{errors:?}");
-            for w in write_displays(&frame, &r) {
-                w.unwrap();
-            }
-            out.push(r);
-        }
-    };
-    for item in parser {
-        match item {
-            Ok(r) => ri.request(r),
-            Err(d) => ri.report(from_rib_diagnostic(d)),
-        }
-        render_ready(&mut ri, &mut out);
-    }
-    ri.finish();
-    render_ready(&mut ri, &mut out);
-    out
-}
+use illume_reyes::Rendered;
+use std::path::{Path, PathBuf};
+use support::run_rib;
 
 /// A fresh scratch directory per test (tests run in parallel in one process).
 fn scratch(name: &str) -> PathBuf {
