@@ -4,17 +4,19 @@
 //! self-shadowing acne.
 mod support;
 
+#[path = "pipelines/envcube.rs"]
+mod envcube;
+#[path = "pipelines/flatmirror.rs"]
+mod flatmirror;
+#[path = "pipelines/forms.rs"]
+mod forms;
+#[path = "pipelines/geometry.rs"]
+mod geometry;
+
+use forms::scratch;
 use illume_reyes::Rendered;
 use std::path::{Path, PathBuf};
 use support::run_rib;
-
-/// A fresh scratch directory per test (tests run in parallel in one process).
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("illume-pipelines-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn shadow_example_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("rib/pipelines/shadow")
@@ -86,18 +88,7 @@ fn single_rib_and_three_step_script_give_identical_images() {
 /// built next to this test (`cargo build -p render -p txmake`) or are named by `$RENDER`/`$TXMAKE`.
 #[test]
 fn shadow_sh_and_render_single_rib_write_identical_files() {
-    let profile_dir = std::env::current_exe()
-        .ok()
-        .and_then(|p| p.parent()?.parent().map(Path::to_path_buf));
-    let find = |var: &str, bin: &str| -> Option<PathBuf> {
-        if let Ok(p) = std::env::var(var) {
-            return Some(p.into());
-        }
-        let p = profile_dir.as_ref()?.join(bin);
-        p.is_file().then_some(p)
-    };
-    let (Some(render_bin), Some(txmake_bin)) = (find("RENDER", "render"), find("TXMAKE", "txmake"))
-    else {
+    let Some((render_bin, txmake_bin)) = forms::binaries() else {
         eprintln!("SKIPPED: render/txmake binaries not built (cargo build -p render -p txmake)");
         return;
     };
