@@ -12,6 +12,8 @@ mod flatmirror;
 mod forms;
 #[path = "pipelines/geometry.rs"]
 mod geometry;
+#[path = "pipelines/latlong.rs"]
+mod latlong;
 
 use forms::scratch;
 use illume_reyes::Rendered;
