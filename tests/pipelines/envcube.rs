@@ -88,7 +88,11 @@ fn each_wall_shows_in_the_chrome_sphere_where_the_mirror_direction_points() {
     let dir = scratch("envcube");
     copy_example("envcube", &dir);
     let frames = run_rib(&rib_in("envcube", "envcube_single.rib", &dir));
-    assert_eq!(frames.len(), 7, "six faces and the beauty frame");
+    assert_eq!(
+        frames.len(),
+        8,
+        "six faces, the tested frame and Figure 9.6"
+    );
     let beauty = &frames[6];
     let cam = beauty_camera();
     let (w, h) = (beauty.width as usize, beauty.height as usize);
@@ -144,16 +148,20 @@ fn each_wall_shows_in_the_chrome_sphere_where_the_mirror_direction_points() {
 
 #[test]
 fn envcube_sh_and_render_single_rib_write_identical_files() {
-    let Some([single, script]) = run_both_forms(
+    let Some(images) = run_both_forms(
         "envcube",
         "envcube_single.rib",
         "envcube.sh",
-        ["envcube_single.tif", "envcube_script.tif"],
+        &[
+            ["envcube_single.tif", "envcube_script.tif"],
+            ["fig9_6_envcube_single.tif", "fig9_6_envcube_script.tif"],
+        ],
     ) else {
         return;
     };
+    let [single, script] = &images[0];
     assert_eq!((single.width, single.height), (320, 160));
-    assert_same_image(&single, &script, "envcube_single.tif vs envcube_script.tif");
+    assert_same_image(single, script, "envcube_single.tif vs envcube_script.tif");
     // Worth comparing: the chrome sphere's reflection is in there (some saturated green, -x).
     let greens = single
         .data
@@ -161,4 +169,6 @@ fn envcube_sh_and_render_single_rib_write_identical_files() {
         .filter(|p| p[1] > 0.8 && p[0] < 0.4 && p[2] < 0.4)
         .count();
     assert!(greens > 50, "{greens} green pixels");
+    let [single, script] = &images[1];
+    assert_same_image(single, script, "the two forms' Figure 9.6");
 }

@@ -151,14 +151,15 @@ fn the_mirror_shows_the_mirrored_scene_render_at_the_same_ndc() {
 
 #[test]
 fn flatmirror_sh_and_render_single_rib_write_identical_files() {
-    let Some([single, script]) = run_both_forms(
+    let Some(images) = run_both_forms(
         "flatmirror",
         "flatmirror_single.rib",
         "flatmirror.sh",
-        ["flatmirror_single.tif", "flatmirror_script.tif"],
+        &[["flatmirror_single.tif", "flatmirror_script.tif"]],
     ) else {
         return;
     };
+    let [single, script] = &images[0];
     assert_eq!((single.width, single.height), (256, 256));
     assert_same_image(
         &single,

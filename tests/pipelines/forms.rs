@@ -68,15 +68,15 @@ pub fn binaries() -> Option<(PathBuf, PathBuf)> {
 }
 
 /// Copies `pipeline`'s example into a scratch directory, runs `sh script` there and
-/// `render -q single` there, and returns the two images they wrote (`outputs`: the single-RIB
-/// form's file, the script's file). `None` (with a loud skip message) when the binaries are
-/// not built.
+/// `render -q single` there, and returns the pairs of images they wrote (`outputs`: the
+/// single-RIB form's file, the script's file). `None` (with a loud skip message) when the
+/// binaries are not built.
 pub fn run_both_forms(
     pipeline: &str,
     single: &str,
     script: &str,
-    outputs: [&str; 2],
-) -> Option<[illume_imageio::Image; 2]> {
+    outputs: &[[&str; 2]],
+) -> Option<Vec<[illume_imageio::Image; 2]>> {
     let Some((render_bin, txmake_bin)) = binaries() else {
         eprintln!("SKIPPED: render/txmake binaries not built (cargo build -p render -p txmake)");
         return None;
@@ -98,7 +98,7 @@ pub fn run_both_forms(
         .unwrap();
     assert!(status.success(), "render {single}: {status}");
     let read = |f: &str| illume_imageio::read_image(&dir.join(f)).unwrap();
-    let images = [read(outputs[0]), read(outputs[1])];
+    let images = outputs.iter().map(|[a, b]| [read(a), read(b)]).collect();
     let _ = std::fs::remove_dir_all(&dir);
     Some(images)
 }

@@ -1,7 +1,7 @@
 //! The lat-long pipeline of `rib/pipelines/latlong/`: an analytic environment (colour
 //! `(d + 1)/2` for direction `d`) through `MakeLatLongEnvironment`/`txmake -envlatl` onto a
 //! chrome sphere.
-use super::forms::{assert_same_image, copy_example, example_dir, rib_in, run_both_forms, scratch};
+use super::forms::{assert_same_image, example_dir, rib_in, run_both_forms, scratch};
 use super::geometry::{environment_direction, hit_sphere, reflect, Camera};
 use crate::support::run_rib;
 use glam::DVec3;
@@ -144,14 +144,15 @@ fn the_chrome_sphere_looks_up_the_analytic_colour_in_the_mirror_direction() {
 
 #[test]
 fn latlong_sh_and_render_single_rib_write_identical_files() {
-    let Some([single, script]) = run_both_forms(
+    let Some(images) = run_both_forms(
         "latlong",
         "latlong_single.rib",
         "latlong.sh",
-        ["latlong_single.tif", "latlong_script.tif"],
+        &[["latlong_single.tif", "latlong_script.tif"]],
     ) else {
         return;
     };
+    let [single, script] = &images[0];
     assert_eq!((single.width, single.height), (128, 128));
-    assert_same_image(&single, &script, "latlong_single.tif vs latlong_script.tif");
+    assert_same_image(single, script, "latlong_single.tif vs latlong_script.tif");
 }
