@@ -2,67 +2,23 @@
 //! `MakeShadow`/`txmake -shadow`, beauty pass through `shadowspot`. Checks the two forms of
 //! `rib/pipelines/shadow/` agree, the shadow edge lands where geometry puts it, and bias removes
 //! self-shadowing acne.
-use illume_reyes::{render, write_displays, RenderSettings, Rendered};
-use illume_ri::{from_rib_diagnostic, Ri, Severity};
+mod support;
+
+#[path = "pipelines/envcube.rs"]
+mod envcube;
+#[path = "pipelines/flatmirror.rs"]
+mod flatmirror;
+#[path = "pipelines/forms.rs"]
+mod forms;
+#[path = "pipelines/geometry.rs"]
+mod geometry;
+#[path = "pipelines/latlong.rs"]
+mod latlong;
+
+use forms::scratch;
+use illume_reyes::Rendered;
 use std::path::{Path, PathBuf};
-
-/// What `render` does with one RIB stream: frames render in file order as soon as they end,
-/// displays are written, and Make* requests run between frames so they see earlier frames' files.
-fn run_rib(rib: &str) -> Vec<Rendered> {
-    let mut ri = Ri::new();
-    ri.set_texture_maker(Box::new(|req, _options| {
-        illume_texture::make_from_request(req)
-            .map(|_warnings| ())
-            .map_err(|e| e.to_string())
-    }));
-    let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
-    let mut out = Vec::new();
-    let render_ready = |ri: &mut Ri, out: &mut Vec<Rendered>| {
-        let errors: Vec<_> = ri
-            .drain_diagnostics()
-            .into_iter()
-            .filter(|d| d.severity == Severity::Error)
-            .collect();
-        assert!(errors.is_empty(), "{errors:?}");
-        for frame in ri.take_frames() {
-            let cache =
-                illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
-            let settings = RenderSettings {
-                progress: None,
-                textures: Some(&cache),
-            };
-            let r = render(&frame, &settings);
-            let errors: Vec<_> = r
-                .warnings
-                .iter()
-                .filter(|d| d.severity == Severity::Error)
-                .collect();
-            assert!(errors.is_empty(), "{errors:?}");
-            for w in write_displays(&frame, &r) {
-                w.unwrap();
-            }
-            out.push(r);
-        }
-    };
-    for item in parser {
-        match item {
-            Ok(r) => ri.request(r),
-            Err(d) => ri.report(from_rib_diagnostic(d)),
-        }
-        render_ready(&mut ri, &mut out);
-    }
-    ri.finish();
-    render_ready(&mut ri, &mut out);
-    out
-}
-
-/// A fresh scratch directory per test (tests run in parallel in one process).
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("illume-pipelines-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use support::run_rib;
 
 fn shadow_example_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("rib/pipelines/shadow")
@@ -134,18 +90,7 @@ fn single_rib_and_three_step_script_give_identical_images() {
 /// built next to this test (`cargo build -p render -p txmake`) or are named by `$RENDER`/`$TXMAKE`.
 #[test]
 fn shadow_sh_and_render_single_rib_write_identical_files() {
-    let profile_dir = std::env::current_exe()
-        .ok()
-        .and_then(|p| p.parent()?.parent().map(Path::to_path_buf));
-    let find = |var: &str, bin: &str| -> Option<PathBuf> {
-        if let Ok(p) = std::env::var(var) {
-            return Some(p.into());
-        }
-        let p = profile_dir.as_ref()?.join(bin);
-        p.is_file().then_some(p)
-    };
-    let (Some(render_bin), Some(txmake_bin)) = (find("RENDER", "render"), find("TXMAKE", "txmake"))
-    else {
+    let Some((render_bin, txmake_bin)) = forms::binaries() else {
         eprintln!("SKIPPED: render/txmake binaries not built (cargo build -p render -p txmake)");
         return;
     };

@@ -4,7 +4,7 @@
 #![forbid(unsafe_code)]
 
 use clap::Parser;
-use illume_ri::{from_rib_diagnostic, Ri, Severity};
+use illume_ri::{Ri, Severity};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -91,45 +91,24 @@ fn main() -> ExitCode {
         };
         let mut ri = Ri::new();
         ri.set_frame_range(frames);
-        ri.set_texture_maker(Box::new(|req, _options| {
-            let warnings = illume_texture::make_from_request(req).map_err(|e| e.to_string())?;
-            for w in warnings {
-                eprintln!("render: warning: {}: {w}", req.name());
-            }
-            Ok(())
+        ri.set_texture_maker(illume_reyes::texture_maker(|request, warning| {
+            eprintln!("render: warning: {request}: {warning}")
         }));
         if let Some(c) = &args.crop {
             ri.set_crop_override(Some([c[0], c[1], c[2], c[3]]));
         }
-        let mut parse_seconds = 0.0;
-        let mut t = Instant::now();
-        let report = |ri: &mut Ri| {
-            for d in ri.drain_diagnostics() {
-                eprintln!("{d}");
-            }
-        };
-        for item in parser {
-            match item {
-                Ok(req) => ri.request(req),
-                Err(d) => ri.report(from_rib_diagnostic(d)),
-            }
-            report(&mut ri);
-            let ready = ri.take_frames();
-            if ready.is_empty() {
-                continue;
-            }
-            parse_seconds += t.elapsed().as_secs_f64();
-            for frame in ready {
+        // Parse time of a frame: from the end of the previous frame's render (or the start).
+        let mut since_last_frame = Instant::now();
+        illume_reyes::render_frames_in_order(
+            &mut ri,
+            parser,
+            |d| eprintln!("{d}"),
+            |frame| {
+                let parse_seconds = since_last_frame.elapsed().as_secs_f64();
                 errors += render_frame(&pool, &frame, show_progress, args.stats, parse_seconds);
-            }
-            parse_seconds = 0.0;
-            t = Instant::now();
-        }
-        ri.finish();
-        report(&mut ri);
-        for frame in ri.take_frames() {
-            errors += render_frame(&pool, &frame, show_progress, args.stats, parse_seconds);
-        }
+                since_last_frame = Instant::now();
+            },
+        );
         errors += ri.error_count();
     }
     if fatal {

@@ -6,6 +6,7 @@
 
 pub mod display;
 pub mod filter;
+mod frame_loop;
 mod hider;
 mod refine;
 pub mod sampling;
@@ -13,6 +14,7 @@ mod shading;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};
 pub use filter::PixelFilter;
+pub use frame_loop::{render_frames_in_order, texture_maker};
 
 use illume_ri::{Diagnostic, Frame};
 
