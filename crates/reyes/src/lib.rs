@@ -7,6 +7,7 @@
 pub mod display;
 pub mod filter;
 mod hider;
+mod rayscene;
 mod refine;
 pub mod sampling;
 mod shading;

@@ -30,6 +30,7 @@
 
 mod displacement;
 mod error;
+mod areaemitter;
 mod geometric;
 mod illuminance;
 mod light;
@@ -37,6 +38,7 @@ mod lighting;
 mod lights;
 mod materials;
 mod mathfunctions;
+mod occlusion;
 mod parameters;
 mod shadingenv;
 mod shadinggrid;
@@ -44,6 +46,7 @@ mod surface;
 mod texturelookup;
 
 pub use displacement::{displace, displacement, Displacement};
+pub use areaemitter::AreaEmitter;
 pub use error::ShadeError;
 pub use geometric::{faceforward, fresnel, normalize_or_zero, reflect, refract, Fresnel};
 pub use illuminance::{category_matches, Illuminance};
@@ -54,6 +57,7 @@ pub use lighting::{
 };
 pub use materials::environment::{raysphere, RaySphere};
 pub use mathfunctions::{mix, smoothstep};
+pub use occlusion::Occlusion;
 pub use parameters::ParamValue;
 pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;
