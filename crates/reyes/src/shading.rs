@@ -44,7 +44,7 @@ pub(crate) struct FrameShading<'a> {
     specular_model: SpecularModel,
     textures: Option<&'a dyn TextureLookup>,
     /// The shadow-casting geometry, when some light traces shadow rays.
-    pub rays: Option<RayScene>,
+    rays: Option<RayScene>,
     /// The frame number, for per-point random numbers.
     seed: u32,
     pub warnings: WarnOnce,
