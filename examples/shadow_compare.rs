@@ -31,8 +31,15 @@ fn run_rib(rib: &str) -> Vec<Rendered> {
             eprintln!("{d}");
         }
         for frame in ri.take_frames() {
-            let cache = illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
-            let r = render(&frame, &RenderSettings { progress: None, textures: Some(&cache) });
+            let cache =
+                illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
+            let r = render(
+                &frame,
+                &RenderSettings {
+                    progress: None,
+                    textures: Some(&cache),
+                },
+            );
             for w in write_displays(&frame, &r) {
                 w.expect("display");
             }
@@ -74,7 +81,11 @@ fn depth_pass(n: u32, map: &str) -> String {
     let dir = DVec3::from(D).normalize();
     let centre = DVec3::new(0.0, 0.0, -HEIGHT);
     let camera_from_world = DMat4::look_to_lh(centre - dir * 6.0, dir, DVec3::Y);
-    let m: Vec<String> = camera_from_world.to_cols_array().iter().map(|v| format!("{v}")).collect();
+    let m: Vec<String> = camera_from_world
+        .to_cols_array()
+        .iter()
+        .map(|v| format!("{v}"))
+        .collect();
     format!(
         "FrameBegin 1\nFormat {n} {n} 1\nPixelSamples 1 1\nPixelFilter \"box\" 1 1\n\
          Hider \"hidden\" \"jitter\" [0]\nDisplay \"{map}\" \"shadow\" \"z\"\nShadingRate 4\n\
@@ -147,7 +158,9 @@ fn main() {
             let r = run_rib(&(depth_pass(n, &map) + &beauty(&light)));
             let secs = t.elapsed().as_secs_f64();
             let (all, far) = errors(&r[1]);
-            println!("| shadow map | {n}², samples {samples}, bias {bias} | {secs:.3} | {all} | {far} |");
+            println!(
+                "| shadow map | {n}², samples {samples}, bias {bias} | {secs:.3} | {all} | {far} |"
+            );
         }
     }
     let _ = std::fs::remove_dir_all(&dir);

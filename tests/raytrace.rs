@@ -119,7 +119,10 @@ fn sphere_shadow_on_a_plane_is_the_analytic_ellipse_within_one_pixel() {
     let (shadow, analytic, bad) = compare_with_ellipse(&r);
     assert!(analytic > 3000, "the ellipse is large: {analytic} px");
     eprintln!("ellipse: {shadow} shadow px rendered, {analytic} analytic, {bad} off by > 1 px");
-    assert_eq!(bad, 0, "{bad} pixels disagree farther than 1 px from the boundary");
+    assert_eq!(
+        bad, 0,
+        "{bad} pixels disagree farther than 1 px from the boundary"
+    );
     let rel = (shadow as f64 - analytic as f64).abs() / analytic as f64;
     assert!(rel < 0.02, "shadow area {shadow} vs analytic {analytic} px");
 }
@@ -206,11 +209,7 @@ fn lit_sphere_has_no_self_shadowed_pixels_before_the_terminator() {
 /// keeps the cap from shadowing itself.
 #[test]
 fn concave_cap_does_not_shadow_itself_on_its_own_chords() {
-    let (worst, count) = acne(
-        "Translate 0 0 0\nSphere 5 4.5 5 360",
-        [0.0, 0.0, 1.0],
-        0.1,
-    );
+    let (worst, count) = acne("Translate 0 0 0\nSphere 5 4.5 5 360", [0.0, 0.0, 1.0], 0.1);
     assert!(count > 15000, "{count} lit pixels");
     assert!(worst < 1e-6, "largest difference {worst}");
 }
@@ -368,7 +367,10 @@ fn soft_shadow_noise_falls_at_least_as_one_over_sqrt_n() {
         }
         // Frames 1 and 2 draw independent samples: Var(a − b) = 2σ².
         let sigma = (s2 / count as f64 / 2.0).sqrt();
-        assert!(sigma > 0.0, "n = {n}: no noise at all means no per-point sampling");
+        assert!(
+            sigma > 0.0,
+            "n = {n}: no noise at all means no per-point sampling"
+        );
         points.push(((n as f64).ln(), sigma.ln()));
     }
     let m = points.len() as f64;
@@ -376,7 +378,10 @@ fn soft_shadow_noise_falls_at_least_as_one_over_sqrt_n() {
         .iter()
         .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
     let (mx, my) = (sx / m, sy / m);
-    let slope = points.iter().map(|&(x, y)| (x - mx) * (y - my)).sum::<f64>()
+    let slope = points
+        .iter()
+        .map(|&(x, y)| (x - mx) * (y - my))
+        .sum::<f64>()
         / points.iter().map(|&(x, _)| (x - mx).powi(2)).sum::<f64>();
     eprintln!("soft-shadow noise log-log slope: {slope:.3} ({points:?})");
     assert!(
@@ -389,7 +394,11 @@ fn soft_shadow_noise_falls_at_least_as_one_over_sqrt_n() {
 fn ray_traced_images_are_identical_for_one_and_two_threads() {
     let scenes = [
         area_scene(80, 16, 1, true),
-        sphere_on_plane("Attribute \"light\" \"shadows\" [\"on\"]", "\"distantlight\" 1", ""),
+        sphere_on_plane(
+            "Attribute \"light\" \"shadows\" [\"on\"]",
+            "\"distantlight\" 1",
+            "",
+        ),
     ];
     for rib in scenes {
         let f = frames(&rib, None);

@@ -310,8 +310,8 @@ impl Build<'_> {
                 if cnt == 0 || right_count[b + 1] == 0 {
                     continue;
                 }
-                let cost = acc.half_area() * cnt as f32
-                    + right_area[b + 1] * right_count[b + 1] as f32;
+                let cost =
+                    acc.half_area() * cnt as f32 + right_area[b + 1] * right_count[b + 1] as f32;
                 if best.is_none_or(|(c, _, _)| cost < c) {
                     best = Some((cost, axis, b + 1));
                 }

@@ -91,10 +91,7 @@ fn closed_mesh_is_watertight_at_shared_edges_and_vertices() {
             for j in 0..=n {
                 for i in 0..=2 * n {
                     // Vertices, edge midpoints and diagonal points of every face grid.
-                    let (a, b) = (
-                        -1.0 + i as f64 / n as f64,
-                        -1.0 + 2.0 * j as f64 / n as f64,
-                    );
+                    let (a, b) = (-1.0 + i as f64 / n as f64, -1.0 + 2.0 * j as f64 / n as f64);
                     let mut p = [0.0; 3];
                     p[axis] = side;
                     p[(axis + 1) % 3] = a;
@@ -131,7 +128,11 @@ fn coincident_centroids_build_a_valid_tree() {
     let tris: Vec<Triangle> = (0..1000)
         .map(|k| {
             let s = 1.0 + k as f32 * 1e-3;
-            Triangle::new(Vec3::new(-s, -s, 1.0), Vec3::new(s, -s, 1.0), Vec3::new(0.0, 2.0 * s, 1.0))
+            Triangle::new(
+                Vec3::new(-s, -s, 1.0),
+                Vec3::new(s, -s, 1.0),
+                Vec3::new(0.0, 2.0 * s, 1.0),
+            )
         })
         .collect();
     let bvh = Bvh::new(tris);

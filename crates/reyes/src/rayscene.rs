@@ -88,7 +88,11 @@ pub(crate) fn emitter(frame: &Frame, light: usize) -> AreaEmitter {
         if fp.attributes.area_light != Some(light) {
             continue;
         }
-        let flip = if fp.attributes.orientation_rh { -1.0 } else { 1.0 };
+        let flip = if fp.attributes.orientation_rh {
+            -1.0
+        } else {
+            1.0
+        };
         for g in diced(fp.primitive.as_ref(), &frame.camera, MIN_EMITTER_SEGMENTS) {
             // Every other vertex: the coarse grid (the fine one only measures chord error).
             let (nu, nv) = (g.nu.div_ceil(2), g.nv.div_ceil(2));
@@ -141,11 +145,10 @@ fn dice_into(
 fn segments(prim: &dyn Primitive, camera: &Camera, min_segments: usize) -> (usize, usize) {
     const TEST: usize = 5;
     let g = prim.dice(TEST, TEST);
-    let pts: Vec<Option<DVec3>> = g
-        .p
-        .iter()
-        .map(|p| camera.raster_from_camera(p.as_dvec3()))
-        .collect();
+    let pts: Vec<Option<DVec3>> =
+        g.p.iter()
+            .map(|p| camera.raster_from_camera(p.as_dvec3()))
+            .collect();
     if g.p.len() != TEST * TEST || pts.iter().any(Option::is_none) {
         return (UNMEASURED_SEGMENTS, UNMEASURED_SEGMENTS);
     }

@@ -1,6 +1,7 @@
 //! Grid shading through `illume-shade`: the frame's shaders are bound once (parameters parsed,
 //! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
 //! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
+use crate::rayscene::{self, RayScene};
 use glam::{DMat4, DVec4, Vec3};
 use illume_geom::Grid;
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
@@ -8,7 +9,6 @@ use illume_shade::{
     displace, shade_surface, Displacement, ShadingEnv, ShadingGrid, SpecularModel, Surface,
     TextureLookup, WarnOnce,
 };
-use crate::rayscene::{self, RayScene};
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;

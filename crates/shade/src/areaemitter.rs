@@ -131,6 +131,10 @@ mod tests {
         let expected = (r1.powi(4) - r0.powi(4)) / (2.0 * (r1 * r1 - r0 * r0));
         assert!(((r2 / count) - expected).abs() / expected < 2e-3);
         let area = std::f64::consts::PI * (r1 * r1 - r0 * r0) / 2.0;
-        assert!((e.area() - area).abs() / area < 2e-3, "{} vs {area}", e.area());
+        assert!(
+            (e.area() - area).abs() / area < 2e-3,
+            "{} vs {area}",
+            e.area()
+        );
     }
 }

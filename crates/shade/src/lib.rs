@@ -28,9 +28,9 @@
 //! ```
 #![forbid(unsafe_code)]
 
+mod areaemitter;
 mod displacement;
 mod error;
-mod areaemitter;
 mod geometric;
 mod illuminance;
 mod light;
@@ -45,8 +45,8 @@ mod shadinggrid;
 mod surface;
 mod texturelookup;
 
-pub use displacement::{displace, displacement, Displacement};
 pub use areaemitter::AreaEmitter;
+pub use displacement::{displace, displacement, Displacement};
 pub use error::ShadeError;
 pub use geometric::{faceforward, fresnel, normalize_or_zero, reflect, refract, Fresnel};
 pub use illuminance::{category_matches, Illuminance};

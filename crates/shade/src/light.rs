@@ -3,15 +3,15 @@
 //! A light shader runs once per grid (DESIGN.md “Shading”): [`LightCache::run`] evaluates every
 //! light at every point and keeps `L`, `Cl`, `Ol`; every illuminance loop of the surface shader
 //! (`diffuse()`, then `specular()`, …) reads the cache instead of re-running the light.
+use crate::areaemitter::AreaEmitter;
 use crate::error::ShadeError;
 use crate::lights::{self, LightKind};
 use crate::parameters::{ParamValue, ShaderParams};
 use crate::shadingenv::ShadingEnv;
 use crate::shadinggrid::ShadingGrid;
-use crate::areaemitter::AreaEmitter;
 use glam::{DMat4, Vec3};
-use std::sync::Arc;
 use illume_rib::Param;
+use std::sync::Arc;
 
 /// A bound light shader (`LightSource` / `AreaLightSource`).
 #[derive(Clone, Debug, PartialEq)]
@@ -110,9 +110,7 @@ impl Light {
     /// Whether shading needs shadow rays for this light (the renderer builds its ray-tracing
     /// scene only when some light does).
     pub fn needs_rays(&self) -> bool {
-        self.raytraced
-            || self.emitter.is_some()
-            || self.params.string("shadowname") == "raytrace"
+        self.raytraced || self.emitter.is_some() || self.params.string("shadowname") == "raytrace"
     }
 
     /// The shader name as bound.

@@ -47,7 +47,9 @@ fn hash(mut x: u32) -> u32 {
 pub(crate) fn point_random(p: Vec3, k: u32, stream: u32) -> (f64, f64) {
     let h = hash(
         p.x.to_bits()
-            ^ hash(p.y.to_bits() ^ hash(p.z.to_bits() ^ hash(k.wrapping_mul(0x9e37_79b9) ^ stream))),
+            ^ hash(
+                p.y.to_bits() ^ hash(p.z.to_bits() ^ hash(k.wrapping_mul(0x9e37_79b9) ^ stream)),
+            ),
     );
     let unit = |h: u32| f64::from(h >> 8) * (1.0 / 16_777_216.0);
     (unit(hash(h ^ 0x68bc_21eb)), unit(hash(h ^ 0x02e5_be93)))

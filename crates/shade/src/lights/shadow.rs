@@ -108,7 +108,14 @@ impl<'a> Shadowing<'a> {
 
 impl Shadowing<'_> {
     /// The share of `n` shadow rays from point `i` toward the light that nothing blocks.
-    fn traced_fraction(&self, grid: &ShadingGrid, i: usize, l_light: Vec3, n: u32, blur: f64) -> f32 {
+    fn traced_fraction(
+        &self,
+        grid: &ShadingGrid,
+        i: usize,
+        l_light: Vec3,
+        n: u32,
+        blur: f64,
+    ) -> f32 {
         let Some(occlusion) = self.env.occlusion else {
             return 1.0;
         };
@@ -122,7 +129,11 @@ impl Shadowing<'_> {
             (grid.p[i].as_dvec3() + toward - origin, 1.0 - 1e-6)
         };
         if n <= 1 || blur <= 0.0 {
-            return if occlusion.occluded(origin, target, t_max) { 0.0 } else { 1.0 };
+            return if occlusion.occluded(origin, target, t_max) {
+                0.0
+            } else {
+                1.0
+            };
         }
         let len = target.length();
         if !(len > 0.0 && len.is_finite()) {
@@ -152,7 +163,11 @@ fn ray_settings(light: &Light) -> Option<(u32, f64)> {
     let p = &light.params;
     if p.string("shadowname") == "raytrace" {
         let n = p.float("samples");
-        let n = if n.is_finite() { n.clamp(1.0, 1024.0) as u32 } else { 1 };
+        let n = if n.is_finite() {
+            n.clamp(1.0, 1024.0) as u32
+        } else {
+            1
+        };
         let blur = f64::from(p.float("blur")).max(0.0);
         return Some((n, if blur.is_finite() { blur } else { 0.0 }));
     }
