@@ -177,7 +177,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let mut warnings = Vec::new();
     let mut pieces = Vec::new();
     let mut culled = 0;
-    for ((ps, counts), fp) in per_prim.into_iter().zip(&frame.primitives) {
+    for (index, ((ps, counts), fp)) in per_prim.into_iter().zip(&frame.primitives).enumerate() {
         culled += counts.culled;
         if counts.eye_dropped > 0 {
             warnings.push(Diagnostic {
@@ -190,7 +190,10 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
                 ),
             });
         }
-        pieces.extend(ps);
+        pieces.extend(ps.into_iter().map(|mut p| {
+            p.prim_index = index;
+            p
+        }));
     }
     let split_ns = ns(t0);
 
@@ -348,7 +351,7 @@ fn dice_and_shade(
     let a = &piece.attrs;
     // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
     let flip = if a.orientation_rh { -1.0 } else { 1.0 };
-    let shaded = shading.shade_grid(&grid, a, flip);
+    let shaded = shading.shade_grid(&grid, a, flip, piece.prim_index);
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;
     // Displacement may have moved the points; sample where the shader left them.

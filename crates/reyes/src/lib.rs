@@ -8,6 +8,7 @@ pub mod display;
 pub mod filter;
 mod frame_loop;
 mod hider;
+mod rayscene;
 mod refine;
 pub mod sampling;
 mod shading;

@@ -34,6 +34,8 @@ pub(crate) struct Piece<'a> {
     /// Raster bound x0 x1 y0 y1 and nearest camera depth.
     pub raster: [f32; 4],
     pub zmin: f32,
+    /// Index of the frame primitive this piece came from.
+    pub prim_index: usize,
 }
 
 pub(crate) struct Refiner<'c> {
@@ -185,6 +187,7 @@ impl Refiner<'_> {
             nv,
             raster,
             zmin: b.min.z,
+            prim_index: 0,
         });
     }
 

@@ -1,6 +1,7 @@
 //! Grid shading through `illume-shade`: the frame's shaders are bound once (parameters parsed,
 //! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
 //! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
+use crate::rayscene::{self, RayScene};
 use glam::{DMat4, DVec4, Vec3};
 use illume_geom::Grid;
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
@@ -42,6 +43,10 @@ pub(crate) struct FrameShading<'a> {
     orthographic: bool,
     specular_model: SpecularModel,
     textures: Option<&'a dyn TextureLookup>,
+    /// The shadow-casting geometry, when some light traces shadow rays.
+    rays: Option<RayScene>,
+    /// The frame number, for per-point random numbers.
+    seed: u32,
     pub warnings: WarnOnce,
     pub nonfinite: AtomicU64,
 }
@@ -161,13 +166,21 @@ impl<'a> FrameShading<'a> {
             };
             displacements.insert(key, bound);
         }
-        let lights = frame
+        let lights: Vec<Option<illume_shade::Light>> = frame
             .lights
             .iter()
-            .map(|l| {
+            .enumerate()
+            .map(|(index, l)| {
                 let s = &l.shader;
                 match illume_shade::light(&s.name, &s.params, s.camera_from_shader) {
                     Ok((light, warnings)) => {
+                        let mut light = light.with_raytraced_shadows(l.shadows);
+                        if l.area {
+                            let e = rayscene::emitter(frame, index);
+                            if !e.is_empty() {
+                                light = light.with_emitter(Arc::new(e), l.samples);
+                            }
+                        }
                         diags.extend(
                             warnings
                                 .into_iter()
@@ -186,6 +199,11 @@ impl<'a> FrameShading<'a> {
                 }
             })
             .collect();
+        let rays = lights
+            .iter()
+            .flatten()
+            .any(illume_shade::Light::needs_rays)
+            .then(|| RayScene::build(frame));
         let (screen_from_camera, ndc_from_camera, raster_from_camera) = projections(frame);
         let specular_model =
             SpecularModel::from_option(&frame.options.specular_model).unwrap_or_default();
@@ -202,6 +220,8 @@ impl<'a> FrameShading<'a> {
             orthographic: !frame.camera.is_perspective(),
             specular_model,
             textures,
+            rays,
+            seed: frame.number.unwrap_or(0) as u32,
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
         };
@@ -219,11 +239,12 @@ impl<'a> FrameShading<'a> {
         }
     }
 
-    /// Shades one grid. `flip` (±1) orients the geometric normals as the attributes say.
+    /// Shades one grid of frame primitive `prim`. `flip` (±1) orients the geometric normals as
+    /// the attributes say.
     ///
     /// "object" space is not yet carried with the primitive, so shaders see the surface's shader
     /// space there (the same space unless the Surface was declared under another transform).
-    pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32) -> Shaded {
+    pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
         let n = grid.len();
         let cs = grid
             .cs
@@ -278,6 +299,11 @@ impl<'a> FrameShading<'a> {
         env.specular_model = self.specular_model;
         env.textures = self.textures;
         env.warnings = Some(&self.warnings);
+        if let Some(r) = &self.rays {
+            env.occlusion = Some(r);
+            env.ray_offset = r.offset(prim);
+        }
+        env.seed = self.seed;
         let displacement = attrs.displacement.as_ref().and_then(|d| {
             self.displacements
                 .get(&(Arc::as_ptr(d) as usize))

@@ -19,6 +19,12 @@ pub struct Light {
     pub handle: Handle,
     pub shader: Shader,
     pub area: bool,
+    /// `Attribute "light" "shadows" ["on"]` when the light was declared (BMRT): its visibility
+    /// is decided by ray-traced shadow rays.
+    pub shadows: bool,
+    /// `Attribute "light" "nsamples"` when the light was declared: samples per shading point
+    /// on an area light's geometry (and shadow rays per point of a ray-traced shadow).
+    pub samples: u32,
 }
 
 /// Bezier, the spec's default `Basis` (RI Spec 3.2 §5.2.1), in RIB row order.
@@ -62,6 +68,15 @@ pub struct Attributes {
     pub detail_range: Option<[f32; 4]>,
     /// `GeometricApproximation "flatness"`.
     pub flatness: Option<f32>,
+    /// `Attribute "light" "shadows"` ("on"/"off"), given to lights declared under it.
+    pub light_shadows: bool,
+    /// `Attribute "light" "nsamples"`, given to lights declared under it.
+    pub light_samples: u32,
+    /// Whether this geometry blocks shadow rays: `Attribute "visibility" "transmission"` and
+    /// `Attribute "render" "casts_shadows"`. BMRT's values: "opaque", "Os" and "shader" cast
+    /// (all as fully opaque here), "transparent" and "none" do not; PRMan's integer form
+    /// (`"int transmission" [0]`) too.
+    pub casts_shadows: bool,
 }
 
 impl Default for Attributes {
@@ -89,6 +104,9 @@ impl Default for Attributes {
             detail: None,
             detail_range: None,
             flatness: None,
+            light_shadows: false,
+            light_samples: 16,
+            casts_shadows: true,
         }
     }
 }

@@ -1036,6 +1036,8 @@ impl Ri {
             handle: handle.clone(),
             shader,
             area,
+            shadows: self.attributes.light_shadows,
+            samples: self.attributes.light_samples,
         };
         let index = match self.lights.iter().position(|l| l.handle == handle) {
             Some(i) => {
@@ -1080,6 +1082,36 @@ impl Ri {
                 }
                 ("displacementbound", "coordinatesystem") => {}
                 ("dice", "binary") => self.attrs().dice_binary = f.unwrap_or(0.0) != 0.0,
+                ("light", "shadows") => match on_off(params, &p) {
+                    Some(on) => self.attrs().light_shadows = on,
+                    None => self.diagnostics.error(
+                        span,
+                        "Attribute",
+                        "\"light\" \"shadows\": expected \"on\" or \"off\"",
+                    ),
+                },
+                ("light", "nsamples") => match f {
+                    Some(n) if n >= 1.0 && n.is_finite() => {
+                        self.attrs().light_samples = (n as u32).min(4096)
+                    }
+                    _ => self.diagnostics.error(
+                        span,
+                        "Attribute",
+                        "\"light\" \"nsamples\": expected a positive count",
+                    ),
+                },
+                ("visibility", "transmission") | ("render", "casts_shadows") => {
+                    match casts_shadows(params, &p) {
+                        Some(c) => self.attrs().casts_shadows = c,
+                        None => self.diagnostics.error(
+                            span,
+                            "Attribute",
+                            format!(
+                                "\"{name}\" \"{p}\": expected \"opaque\", \"Os\", \"shader\", \"transparent\", \"none\" or 0/1"
+                            ),
+                        ),
+                    }
+                }
                 (_, p) => self.diagnostics.warn(
                     span,
                     "Attribute",
@@ -1519,4 +1551,30 @@ pub fn from_rib_diagnostic(d: illume_rib::Diagnostic) -> Diagnostic {
         request: d.request,
         message: d.message,
     }
+}
+
+/// `"on"`/`"off"` (or 1/0) for `Attribute "light" "shadows"`.
+fn on_off(params: &ParamList, name: &str) -> Option<bool> {
+    if let Some(s) = paramlist::string(params, name) {
+        return match s.as_str() {
+            "on" => Some(true),
+            "off" => Some(false),
+            _ => None,
+        };
+    }
+    paramlist::float(params, name).map(|f| f != 0.0)
+}
+
+/// Whether geometry casts shadows under BMRT's `"visibility" "transmission"` /
+/// `"render" "casts_shadows"` values (or PRMan's integer `transmission`). "Os" and "shader"
+/// (partial transmission) are treated as opaque: shadow rays do not run shaders here.
+fn casts_shadows(params: &ParamList, name: &str) -> Option<bool> {
+    if let Some(s) = paramlist::string(params, name) {
+        return match s.as_str() {
+            "opaque" | "Os" | "shader" | "shade" => Some(true),
+            "transparent" | "none" => Some(false),
+            _ => None,
+        };
+    }
+    paramlist::float(params, name).map(|f| f != 0.0)
 }

@@ -163,3 +163,54 @@ fn dynamic_load_is_a_clear_error() {
     let d = ri.drain_diagnostics();
     assert!(d[0].message.contains("unsupported"), "{}", d[0]);
 }
+
+#[test]
+fn light_shadows_and_nsamples_go_to_lights_declared_under_them_and_transmission_to_geometry() {
+    use illume_rib::{Param, Value};
+    let attr = |name: &str, p: &str, value: Value| Request::Attribute {
+        name: name.into(),
+        params: vec![Param {
+            name: p.into(),
+            value,
+        }],
+    };
+    let s = |v: &str| Value::Strings(vec![v.into()]);
+    let light = |h: i32| Request::LightSource {
+        name: "pointlight".into(),
+        handle: Handle::Int(h),
+        params: vec![],
+    };
+    let sphere = Request::Sphere {
+        radius: 1.0,
+        zmin: -1.0,
+        zmax: 1.0,
+        thetamax: 360.0,
+        params: vec![],
+    };
+    let mut ri = feed(vec![
+        Request::WorldBegin,
+        light(1),
+        attr("light", "shadows", s("on")),
+        attr("light", "nsamples", Value::Ints(vec![64])),
+        light(2),
+        sphere.clone(),
+        attr("visibility", "string transmission", s("transparent")),
+        sphere.clone(),
+        attr("render", "casts_shadows", s("Os")),
+        sphere.clone(),
+        attr("visibility", "transmission", Value::Ints(vec![0])),
+        sphere,
+        attr("light", "shadows", s("maybe")),
+        Request::WorldEnd,
+    ]);
+    let f = ri.take_frames();
+    let lights: Vec<(bool, u32)> = f[0].lights.iter().map(|l| (l.shadows, l.samples)).collect();
+    assert_eq!(lights, [(false, 16), (true, 64)]);
+    let casts: Vec<bool> = f[0]
+        .primitives
+        .iter()
+        .map(|p| p.attributes.casts_shadows)
+        .collect();
+    assert_eq!(casts, [true, false, true, false]);
+    assert_eq!(ri.error_count(), 1, "\"maybe\" is neither on nor off");
+}

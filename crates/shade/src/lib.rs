@@ -28,6 +28,7 @@
 //! ```
 #![forbid(unsafe_code)]
 
+mod areaemitter;
 mod displacement;
 mod error;
 mod geometric;
@@ -37,12 +38,14 @@ mod lighting;
 mod lights;
 mod materials;
 mod mathfunctions;
+mod occlusion;
 mod parameters;
 mod shadingenv;
 mod shadinggrid;
 mod surface;
 mod texturelookup;
 
+pub use areaemitter::AreaEmitter;
 pub use displacement::{displace, displacement, Displacement};
 pub use error::ShadeError;
 pub use geometric::{faceforward, fresnel, normalize_or_zero, reflect, refract, Fresnel};
@@ -54,6 +57,7 @@ pub use lighting::{
 };
 pub use materials::environment::{raysphere, RaySphere};
 pub use mathfunctions::{mix, smoothstep};
+pub use occlusion::Occlusion;
 pub use parameters::ParamValue;
 pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;

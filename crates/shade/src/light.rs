@@ -3,6 +3,7 @@
 //! A light shader runs once per grid (DESIGN.md “Shading”): [`LightCache::run`] evaluates every
 //! light at every point and keeps `L`, `Cl`, `Ol`; every illuminance loop of the surface shader
 //! (`diffuse()`, then `specular()`, …) reads the cache instead of re-running the light.
+use crate::areaemitter::AreaEmitter;
 use crate::error::ShadeError;
 use crate::lights::{self, LightKind};
 use crate::parameters::{ParamValue, ShaderParams};
@@ -10,6 +11,7 @@ use crate::shadingenv::ShadingEnv;
 use crate::shadinggrid::ShadingGrid;
 use glam::{DMat4, Vec3};
 use illume_rib::Param;
+use std::sync::Arc;
 
 /// A bound light shader (`LightSource` / `AreaLightSource`).
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +23,12 @@ pub struct Light {
     pub(crate) camera_from_shader: DMat4,
     /// Points sampled on an area light's geometry (`arealight`), camera space.
     pub(crate) area_samples: Vec<AreaSample>,
+    /// `Attribute "light" "shadows" ["on"]`: visibility by shadow rays.
+    pub(crate) raytraced: bool,
+    /// Samples per shaded point on the emitter (`Attribute "light" "nsamples"`).
+    pub(crate) samples: u32,
+    /// An area light's geometry, sampled per shaded point.
+    pub(crate) emitter: Option<Arc<AreaEmitter>>,
 }
 
 /// One point on an area light's geometry (Table 9.3: the light shader's `P` and `N`), in camera
@@ -64,6 +72,9 @@ pub fn light(
             params,
             camera_from_shader,
             area_samples: Vec::new(),
+            raytraced: false,
+            samples: 16,
+            emitter: None,
         },
         warnings,
     ))
@@ -77,6 +88,29 @@ impl Light {
     pub fn with_area_samples(mut self, samples: Vec<AreaSample>) -> Light {
         self.area_samples = samples;
         self
+    }
+
+    /// `Attribute "light" "shadows" ["on"]` (BMRT): the light's visibility is decided by
+    /// shadow rays through [`crate::ShadingEnv::occlusion`] instead of shadow maps.
+    pub fn with_raytraced_shadows(mut self, on: bool) -> Light {
+        self.raytraced = on;
+        self
+    }
+
+    /// Gives an `arealight` its geometry: every shaded point gets `samples` stratified points
+    /// on it (a different jitter per point), each run as Listing 9.18's `illuminate(P, N, PI/2)`
+    /// with `Cl` scaled by `1/samples` and its visibility decided by a shadow ray. Takes
+    /// precedence over [`Light::with_area_samples`]. Ignored by the other lights.
+    pub fn with_emitter(mut self, emitter: Arc<AreaEmitter>, samples: u32) -> Light {
+        self.emitter = Some(emitter);
+        self.samples = samples.max(1);
+        self
+    }
+
+    /// Whether shading needs shadow rays for this light (the renderer builds its ray-tracing
+    /// scene only when some light does).
+    pub fn needs_rays(&self) -> bool {
+        self.raytraced || self.emitter.is_some() || self.params.string("shadowname") == "raytrace"
     }
 
     /// The shader name as bound.

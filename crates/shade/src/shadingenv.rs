@@ -1,5 +1,6 @@
 //! What shaders need from the rest of the renderer besides the grid: spaces, options, textures,
 //! and a place to put warnings.
+use crate::occlusion::Occlusion;
 use crate::texturelookup::TextureLookup;
 use glam::{DMat4, Vec3};
 use std::collections::{HashMap, HashSet};
@@ -86,6 +87,14 @@ pub struct ShadingEnv<'a> {
     pub specular_model: SpecularModel,
     pub textures: Option<&'a dyn TextureLookup>,
     pub warnings: Option<&'a dyn WarningSink>,
+    /// Shadow rays (ray-traced shadows, area lights); `None`: those lights are unshadowed.
+    pub occlusion: Option<&'a dyn Occlusion>,
+    /// How far shadow rays start off this grid's surface, camera-space units: the renderer's
+    /// bound on the distance between its ray-tracing tessellation and the true surface
+    /// (a rounding term is added per point, see `occlusion.rs`).
+    pub ray_offset: f32,
+    /// Mixed into every per-point random number (the frame number), so frames differ.
+    pub seed: u32,
 }
 
 impl<'a> ShadingEnv<'a> {
@@ -103,6 +112,9 @@ impl<'a> ShadingEnv<'a> {
             specular_model: SpecularModel::Blinn,
             textures: None,
             warnings: None,
+            occlusion: None,
+            ray_offset: 0.0,
+            seed: 0,
         }
     }
 

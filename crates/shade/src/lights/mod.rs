@@ -111,7 +111,7 @@ pub(crate) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> Vec<Li
         LightKind::Distant | LightKind::ShadowDistant => vec![distantlight::run(light, grid, env)],
         LightKind::Point | LightKind::ShadowPoint => vec![pointlight::run(light, grid, env)],
         LightKind::Spot | LightKind::ShadowSpot => vec![spotlight::run(light, grid, env)],
-        LightKind::Area => arealight::run(light, grid),
+        LightKind::Area => arealight::run(light, grid, env),
     }
 }
 

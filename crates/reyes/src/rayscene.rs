@@ -1,0 +1,202 @@
+//! The frame's shadow-casting geometry for ray-traced shadows and area lights (BMRT's
+//! `Attribute "light" "shadows"`, `shadow("raytrace", …)`, `AreaLightSource`): every primitive
+//! that casts shadows, split until diceable and diced at a coarse, bounded rate into
+//! triangles, in one BVH. Built once per frame, and only when some light needs it.
+//!
+//! The rate is view-dependent but bucket- and thread-independent: about one triangle edge per
+//! [`EDGE_PIXELS`] raster pixels, between [`MIN_SEGMENTS`] and [`MAX_SEGMENTS`] per side of a
+//! diceable piece. Each piece is diced at twice that rate so the half-way vertices measure how
+//! far the triangles lie from the true surface (the chord's sagitta); the largest such distance
+//! of a primitive is the offset its own shadow rays start with, so a lit curved surface never
+//! shadows itself on the chords of its own tessellation.
+//!
+//! Not modelled: displacement (shadows are cast by the undisplaced surface), partial
+//! transmission ("Os"/"shader" cast as opaque), motion.
+use glam::{DVec3, Vec3};
+use illume_geom::{Grid, Primitive};
+use illume_raytrace::{Bvh, Triangle};
+use illume_ri::{Camera, Frame};
+use illume_shade::{AreaEmitter, Occlusion};
+use rayon::prelude::*;
+
+/// Target raster length of a triangle edge.
+const EDGE_PIXELS: f64 = 4.0;
+/// Segments per side of a diceable piece (a sphere gets at least this many around).
+const MIN_SEGMENTS: usize = 8;
+const MAX_SEGMENTS: usize = 96;
+/// Segments per side when the piece cannot be measured in raster space (behind the eye).
+const UNMEASURED_SEGMENTS: usize = 32;
+/// Area lights are sampled on a finer tessellation: its chords shrink the sampled shape.
+const MIN_EMITTER_SEGMENTS: usize = 32;
+/// Splitting deeper than this dices whatever is left as it is.
+const MAX_SPLIT_DEPTH: u32 = 24;
+/// Margin on the measured chord distance (the sagitta between the sampled half-way points).
+const OFFSET_MARGIN: f32 = 1.5;
+
+pub(crate) struct RayScene {
+    bvh: Bvh,
+    /// Per frame primitive: how far shadow rays from it start off its surface.
+    offsets: Vec<f32>,
+}
+
+impl Occlusion for RayScene {
+    fn occluded(&self, origin: DVec3, dir: DVec3, t_max: f64) -> bool {
+        self.bvh.occluded(origin, dir, 0.0, t_max)
+    }
+}
+
+impl RayScene {
+    /// Tessellates every primitive that casts shadows (not area-light geometry: an emitter
+    /// does not block its own light).
+    pub fn build(frame: &Frame) -> RayScene {
+        let per_prim: Vec<(Vec<Triangle>, f32)> = frame
+            .primitives
+            .par_iter()
+            .map(|fp| {
+                let a = &fp.attributes;
+                let mut tris = Vec::new();
+                let mut offset = 0.0f32;
+                // Geometry that blocks no ray cannot shadow itself either: no offset needed.
+                if !a.casts_shadows || a.area_light.is_some() {
+                    return (tris, offset);
+                }
+                for g in diced(fp.primitive.as_ref(), &frame.camera, MIN_SEGMENTS) {
+                    offset = offset.max(triangles(&g, &mut tris));
+                }
+                (tris, offset * OFFSET_MARGIN)
+            })
+            .collect();
+        let offsets = per_prim.iter().map(|p| p.1).collect();
+        let tris = per_prim.into_iter().flat_map(|p| p.0).collect();
+        RayScene {
+            bvh: Bvh::new(tris),
+            offsets,
+        }
+    }
+
+    /// The shadow-ray offset for grids of frame primitive `prim`.
+    pub fn offset(&self, prim: usize) -> f32 {
+        self.offsets.get(prim).copied().unwrap_or(0.0)
+    }
+}
+
+/// The geometry of area light `light`: every primitive declared in its `AreaLightSource`
+/// block, diced, with normals oriented as the hider orients them.
+pub(crate) fn emitter(frame: &Frame, light: usize) -> AreaEmitter {
+    let mut e = AreaEmitter::new();
+    for fp in &frame.primitives {
+        if fp.attributes.area_light != Some(light) {
+            continue;
+        }
+        let flip = if fp.attributes.orientation_rh {
+            -1.0
+        } else {
+            1.0
+        };
+        for g in diced(fp.primitive.as_ref(), &frame.camera, MIN_EMITTER_SEGMENTS) {
+            // Every other vertex: the coarse grid (the fine one only measures chord error).
+            let (nu, nv) = (g.nu.div_ceil(2), g.nv.div_ceil(2));
+            let p: Vec<Vec3> = (0..nv)
+                .flat_map(|j| (0..nu).map(move |i| (i, j)))
+                .map(|(i, j)| g.p[2 * j * g.nu + 2 * i])
+                .collect();
+            e.add_grid(nu, nv, &p, flip);
+        }
+    }
+    e
+}
+
+/// The primitive split until diceable, each piece diced at twice its ray-tracing rate
+/// (`2·segments + 1` vertices per side).
+fn diced(prim: &dyn Primitive, camera: &Camera, min_segments: usize) -> Vec<Grid> {
+    let mut out = Vec::new();
+    dice_into(prim, camera, min_segments, 0, &mut out);
+    out
+}
+
+fn dice_into(
+    prim: &dyn Primitive,
+    camera: &Camera,
+    min_segments: usize,
+    depth: u32,
+    out: &mut Vec<Grid>,
+) {
+    if prim.bound().is_empty() {
+        return;
+    }
+    if !prim.diceable() && depth < MAX_SPLIT_DEPTH {
+        for child in prim.split() {
+            dice_into(child.as_ref(), camera, min_segments, depth + 1, out);
+        }
+        return;
+    }
+    if !prim.diceable() {
+        return;
+    }
+    let (su, sv) = segments(prim, camera, min_segments);
+    let g = prim.dice(2 * su + 1, 2 * sv + 1);
+    if g.nu >= 3 && g.nv >= 3 && g.p.len() == g.nu * g.nv && g.nu % 2 == 1 && g.nv % 2 == 1 {
+        out.push(g);
+    }
+}
+
+/// Triangle segments per side: the longest raster row/column of a coarse test dice over
+/// [`EDGE_PIXELS`], clamped.
+fn segments(prim: &dyn Primitive, camera: &Camera, min_segments: usize) -> (usize, usize) {
+    const TEST: usize = 5;
+    let g = prim.dice(TEST, TEST);
+    let pts: Vec<Option<DVec3>> =
+        g.p.iter()
+            .map(|p| camera.raster_from_camera(p.as_dvec3()))
+            .collect();
+    if g.p.len() != TEST * TEST || pts.iter().any(Option::is_none) {
+        return (UNMEASURED_SEGMENTS, UNMEASURED_SEGMENTS);
+    }
+    let at = |i: usize, j: usize| pts[j * TEST + i].unwrap_or_default().truncate();
+    let (mut lu, mut lv) = (0.0f64, 0.0f64);
+    for a in 0..TEST {
+        lu = lu.max((1..TEST).map(|i| (at(i, a) - at(i - 1, a)).length()).sum());
+        lv = lv.max((1..TEST).map(|j| (at(a, j) - at(a, j - 1)).length()).sum());
+    }
+    let rate = |l: f64| {
+        let n = (l / EDGE_PIXELS).ceil();
+        if n.is_finite() {
+            (n as usize).clamp(min_segments, MAX_SEGMENTS)
+        } else {
+            MAX_SEGMENTS
+        }
+    };
+    (rate(lu), rate(lv))
+}
+
+/// Appends the triangles of the coarse grid (the even vertices of `g`) and returns the
+/// largest distance between the true surface (the odd, half-way vertices) and those triangles'
+/// edges and diagonals: a bound on how far a point of the surface lies from its tessellation.
+fn triangles(g: &Grid, out: &mut Vec<Triangle>) -> f32 {
+    let at = |i: usize, j: usize| g.p[j * g.nu + i];
+    let mid = |a: Vec3, b: Vec3| (a.as_dvec3() + b.as_dvec3()) * 0.5;
+    let mut err = 0.0f64;
+    for j in (0..g.nv - 2).step_by(2) {
+        for i in (0..g.nu - 2).step_by(2) {
+            let (a, b, c, d) = (at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i, j + 2));
+            out.push(Triangle::new(a, b, c));
+            out.push(Triangle::new(a, c, d));
+            let centre = at(i + 1, j + 1).as_dvec3();
+            let checks = [
+                (at(i + 1, j).as_dvec3(), mid(a, b)),
+                (at(i, j + 1).as_dvec3(), mid(a, d)),
+                (at(i + 2, j + 1).as_dvec3(), mid(b, c)),
+                (at(i + 1, j + 2).as_dvec3(), mid(d, c)),
+                (centre, mid(a, c)),
+                (centre, mid(b, d)),
+            ];
+            for (surface, chord) in checks {
+                let e = (surface - chord).length();
+                if e.is_finite() {
+                    err = err.max(e);
+                }
+            }
+        }
+    }
+    err as f32
+}
