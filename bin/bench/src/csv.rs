@@ -4,7 +4,7 @@ use crate::metrics::ErrorStats;
 use crate::sweep::Point;
 
 /// The header row; columns are documented in the README's "Speed against error" section.
-pub const HEADER: &str = "scene,knob,value,pixel_samples,shading_rate,shadow_samples,shadow_blur,\
+pub const HEADER: &str = "scene,knob,value,pixel_samples,shading_rate,smooth,shadow_samples,shadow_blur,\
 shadow_map_size,filter_width,env_blur,bucket_size,threads,wall_s,cpu_s,peak_rss_mb,micropolygons,\
 rmse_converged,max_converged,psnr_converged,rmse_closed,max_closed,psnr_closed,pareto";
 
@@ -33,12 +33,13 @@ pub fn to_csv(points: &[Point]) -> String {
         let s = &p.settings;
         let c = &p.cost;
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{},{:.1},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{},{:.1},{},{},{},{}\n",
             p.scene,
             p.knob.map_or("converged", |k| k.name()),
             num(p.value),
             s.pixel_samples,
             s.shading_rate,
+            u8::from(s.smooth),
             s.shadow_samples,
             s.shadow_blur,
             s.shadow_map_size,

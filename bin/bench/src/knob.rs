@@ -21,6 +21,9 @@ pub enum Knob {
     ShadingRate,
     /// PixelSamples n n with ShadingRate chosen per n (see [`SAMPLES_AND_RATE`]).
     SamplesAndRate,
+    /// `ShadingInterpolation`: 0 "constant" (RI default: a micropolygon takes the colour
+    /// shaded at one of its vertices), 1 "smooth" (Gouraud).
+    ShadingInterpolation,
     ShadowSamples,
     ShadowBlur,
     /// The shadow map's resolution (square), the depth pass's `Format`.
@@ -34,10 +37,11 @@ pub enum Knob {
 }
 
 /// Every knob, in the order the CSV, plot legend and table list them.
-pub const ALL_KNOBS: [Knob; 10] = [
+pub const ALL_KNOBS: [Knob; 11] = [
     Knob::PixelSamples,
     Knob::ShadingRate,
     Knob::SamplesAndRate,
+    Knob::ShadingInterpolation,
     Knob::ShadowSamples,
     Knob::ShadowBlur,
     Knob::ShadowMapSize,
@@ -65,6 +69,7 @@ impl Knob {
             Knob::PixelSamples => "PIXELSAMPLES",
             Knob::ShadingRate => "SHADINGRATE",
             Knob::SamplesAndRate => "SAMPLES+RATE",
+            Knob::ShadingInterpolation => "SMOOTH SHADING",
             Knob::ShadowSamples => "SHADOW SAMPLES",
             Knob::ShadowBlur => "SHADOW BLUR",
             Knob::ShadowMapSize => "SHADOW MAP SIZE",
@@ -82,6 +87,7 @@ impl Knob {
             Knob::PixelSamples => (&[1.0, 2.0, 3.0, 4.0, 6.0, 8.0], &[1.0, 2.0, 4.0]),
             Knob::ShadingRate => (&[8.0, 4.0, 2.0, 1.0, 0.5, 0.25], &[4.0, 1.0, 0.25]),
             Knob::SamplesAndRate => (&[0.0, 1.0, 2.0, 3.0, 4.0, 5.0], &[0.0, 1.0, 3.0]),
+            Knob::ShadingInterpolation => (&[0.0, 1.0], &[0.0, 1.0]),
             Knob::ShadowSamples => (&[1.0, 4.0, 16.0, 64.0, 256.0], &[1.0, 16.0, 64.0]),
             Knob::ShadowBlur => (&[0.0, 0.005, 0.01, 0.02, 0.05], &[0.0, 0.01, 0.05]),
             Knob::ShadowMapSize => (&[64.0, 128.0, 256.0, 512.0, 1024.0], &[64.0, 256.0]),
@@ -115,6 +121,10 @@ impl Knob {
                 format!("PixelSamples {n} {n}, ShadingRate {r}")
             }
             Knob::PixelSamples => format!("PixelSamples {value} {value}"),
+            Knob::ShadingInterpolation => format!(
+                "ShadingInterpolation \"{}\"",
+                if value > 0.5 { "smooth" } else { "constant" }
+            ),
             Knob::ShadingRate => format!("ShadingRate {value}"),
             Knob::ShadowSamples => format!("shadow samples {value}"),
             Knob::ShadowBlur => format!("shadow blur {value}"),
@@ -137,6 +147,8 @@ fn samples_and_rate(index: f64) -> (f64, f64) {
 pub struct Settings {
     pub pixel_samples: u32,
     pub shading_rate: f64,
+    /// `ShadingInterpolation "smooth"` rather than "constant".
+    pub smooth: bool,
     pub shadow_samples: u32,
     pub shadow_blur: f64,
     pub shadow_map_size: u32,
@@ -153,6 +165,7 @@ impl Settings {
         Settings {
             pixel_samples: 2,
             shading_rate: 1.0,
+            smooth: false,
             shadow_samples: 16,
             shadow_blur: 0.01,
             shadow_map_size,
@@ -165,7 +178,8 @@ impl Settings {
 
     /// The converged reference of issue 8: PixelSamples 16 16, ShadingRate 0.1, 256 shadow
     /// samples, a shadow map 4× the default's size. Knobs that are a choice rather than an
-    /// approximation (blur, filter width, bucket size) keep their defaults.
+    /// approximation (interpolation, blur, filter width, bucket size) keep their defaults, so
+    /// the reference is what the default settings converge to.
     pub fn converged(self) -> Settings {
         Settings {
             pixel_samples: 16,
@@ -187,6 +201,7 @@ impl Settings {
                 s.pixel_samples = n as u32;
                 s.shading_rate = r;
             }
+            Knob::ShadingInterpolation => s.smooth = value > 0.5,
             Knob::ShadowSamples => s.shadow_samples = value as u32,
             Knob::ShadowBlur => s.shadow_blur = value,
             Knob::ShadowMapSize => s.shadow_map_size = value as u32,

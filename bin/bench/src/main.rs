@@ -104,6 +104,14 @@ fn main() -> ExitCode {
         eprintln!("bench: no render binary next to bench; build it (cargo build --release -p render) or pass --render");
         return ExitCode::from(2);
     };
+    // The renders run in per-scene scratch directories: relative paths would not resolve there.
+    let render = match std::fs::canonicalize(&render) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("bench: {}: {e}", render.display());
+            return ExitCode::from(2);
+        }
+    };
     let rib_dir = args
         .rib_dir
         .clone()
@@ -113,6 +121,13 @@ fn main() -> ExitCode {
         .scratch
         .clone()
         .unwrap_or_else(|| std::env::temp_dir().join(format!("illume-bench-{}", std::process::id())));
+    let scratch = match std::fs::create_dir_all(&scratch).and_then(|()| std::fs::canonicalize(&scratch)) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("bench: {}: {e}", scratch.display());
+            return ExitCode::from(2);
+        }
+    };
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));

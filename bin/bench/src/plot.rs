@@ -13,22 +13,27 @@ const LEGEND_H: u32 = 70;
 /// Plot-area margins inside a panel: left (tick labels + axis label), right, top, bottom.
 const MARGIN: [f32; 4] = [92.0, 20.0, 40.0, 62.0];
 
-/// A distinct colour per knob (Okabe–Ito-like, readable by colour-blind readers).
-fn knob_color(k: Knob) -> Color {
+/// A distinct colour per knob (Okabe–Ito first, readable by colour-blind readers), as RGB.
+pub fn knob_rgb(k: Knob) -> [u8; 3] {
     let i = ALL_KNOBS.iter().position(|&x| x == k).unwrap_or(0);
-    const C: [(u8, u8, u8); 10] = [
-        (230, 159, 0),
-        (86, 180, 233),
-        (0, 158, 115),
-        (213, 94, 0),
-        (0, 114, 178),
-        (204, 121, 167),
-        (170, 170, 0),
-        (120, 60, 200),
-        (128, 128, 128),
-        (180, 40, 60),
+    const C: [[u8; 3]; ALL_KNOBS.len()] = [
+        [230, 159, 0],
+        [86, 180, 233],
+        [0, 158, 115],
+        [240, 60, 200],
+        [213, 94, 0],
+        [0, 114, 178],
+        [204, 121, 167],
+        [170, 170, 0],
+        [120, 60, 200],
+        [128, 128, 128],
+        [180, 40, 60],
     ];
-    let (r, g, b) = C[i % C.len()];
+    C[i]
+}
+
+fn knob_color(k: Knob) -> Color {
+    let [r, g, b] = knob_rgb(k);
     Color::from_rgba8(r, g, b, 255)
 }
 

@@ -48,6 +48,15 @@ fn common_options(s: &Settings) -> String {
     )
 }
 
+/// The attributes every point sets at the top of its world block.
+fn world_attributes(s: &Settings) -> String {
+    format!(
+        "ShadingRate {}\nShadingInterpolation \"{}\"\n",
+        s.shading_rate,
+        if s.smooth { "smooth" } else { "constant" }
+    )
+}
+
 impl Scene {
     /// Writes the files the scene reads (the mirror scene's six cube faces) into `dir`.
     pub fn prepare(&self, dir: &Path) -> Result<(), String> {
@@ -62,13 +71,13 @@ impl Scene {
         let common = common_options(s);
         let r = self.res;
         let w = SPHERE_WINDOW;
-        let rate = s.shading_rate;
+        let attrs = world_attributes(s);
         Ok(match &self.kind {
             SceneKind::MatteSphere => format!(
                 "Format {r} {r} 1\nScreenWindow -{w} {w} -{w} {w}\nProjection \"orthographic\"\n\
                  PixelFilter \"box\" 1 1\n{common}WorldBegin\n\
                  LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [0 0 0] \"to\" [{lx} {ly} {lz}]\n\
-                 ShadingRate {rate}\nSurface \"matte\"\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n",
+                 {attrs}Surface \"matte\"\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n",
                 lx = closed_form::LIGHT_TRAVEL[0],
                 ly = closed_form::LIGHT_TRAVEL[1],
                 lz = closed_form::LIGHT_TRAVEL[2],
@@ -78,7 +87,7 @@ impl Scene {
                 "MakeCubeFaceEnvironment \"px.tif\" \"nx.tif\" \"py.tif\" \"ny.tif\" \"pz.tif\" \"nz.tif\" \
                  \"env.tx\" 90 \"gaussian\" {fw} {fw}\n\
                  Format {r} {r} 1\nScreenWindow -{w} {w} -{w} {w}\nProjection \"orthographic\"\n\
-                 PixelFilter \"box\" 1 1\n{common}WorldBegin\nShadingRate {rate}\n\
+                 PixelFilter \"box\" 1 1\n{common}WorldBegin\n{attrs}\
                  Surface \"shinymetal\" \"Ka\" [0] \"Kd\" [0] \"Ks\" [0] \"Kr\" [1] \"blur\" [{b}] \
                  \"texturename\" [\"env.tx\"]\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n",
                 fw = s.filter_width,
@@ -125,13 +134,13 @@ fn disk_shadow_rib(s: &Settings, r: u32, common: &str) -> String {
          LightSource \"shadowspot\" 1 \"intensity\" [{i}] \"from\" [0 {hl} 0] \"to\" [0 0 0] \
          \"coneangle\" [{cone}] \"conedeltaangle\" [0.1] \"shadowname\" [\"shadow.sm\"] \
          \"samples\" [{n}] \"blur\" [{b}] \"bias\" [0.01]\n\
-         ShadingRate {rate}\nSurface \"matte\"\n{plane}\nWorldEnd\nFrameEnd\n",
+         {attrs}Surface \"matte\"\n{plane}\nWorldEnd\nFrameEnd\n",
         m = s.shadow_map_size,
         i = closed_form::SPOT_INTENSITY,
         cone = closed_form::SPOT_CONE,
         n = s.shadow_samples,
         b = s.shadow_blur,
-        rate = s.shading_rate,
+        attrs = world_attributes(s),
     )
 }
 
@@ -147,11 +156,12 @@ fn gallery_rib(text: &str, scale: f64, s: &Settings, common: &str) -> Option<Str
         let word = t.split_whitespace().next().unwrap_or("");
         match word {
             "Format" => format = scaled_format(t, scale),
-            "Display" | "PixelSamples" | "ShadingRate" | "Quantize" => {}
+            "Display" | "PixelSamples" | "ShadingRate" | "ShadingInterpolation" | "Quantize" => {}
             "WorldBegin" => {
                 out.push_str(&format);
                 out.push_str(common);
-                out.push_str(&format!("WorldBegin\nShadingRate {}\n", s.shading_rate));
+                out.push_str("WorldBegin\n");
+                out.push_str(&world_attributes(s));
                 for rest in lines.by_ref() {
                     out.push_str(rest);
                     out.push('\n');
