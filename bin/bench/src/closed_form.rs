@@ -40,11 +40,21 @@ fn screen(px: u32, py: u32, u: f64, v: f64, res: u32, w: f64) -> (f64, f64) {
 }
 
 /// Mean of `f(x, y)` over pixel (px, py) on an n×n midpoint grid.
-fn pixel_mean(px: u32, py: u32, res: u32, w: f64, n: u32, f: &dyn Fn(f64, f64) -> [f64; 3]) -> [f64; 3] {
+fn pixel_mean(
+    px: u32,
+    py: u32,
+    res: u32,
+    w: f64,
+    n: u32,
+    f: &dyn Fn(f64, f64) -> [f64; 3],
+) -> [f64; 3] {
     let mut sum = [0.0; 3];
     for j in 0..n {
         for i in 0..n {
-            let (u, v) = ((f64::from(i) + 0.5) / f64::from(n), (f64::from(j) + 0.5) / f64::from(n));
+            let (u, v) = (
+                (f64::from(i) + 0.5) / f64::from(n),
+                (f64::from(j) + 0.5) / f64::from(n),
+            );
             let (x, y) = screen(px, py, u, v, res, w);
             let c = f(x, y);
             for k in 0..3 {
@@ -59,9 +69,20 @@ fn pixel_mean(px: u32, py: u32, res: u32, w: f64, n: u32, f: &dyn Fn(f64, f64) -
 fn radius_range(px: u32, py: u32, res: u32, w: f64) -> (f64, f64) {
     let (x0, y1) = screen(px, py, 0.0, 0.0, res, w);
     let (x1, y0) = screen(px, py, 1.0, 1.0, res, w);
-    let near = |a: f64, b: f64| if a > 0.0 { a } else if b < 0.0 { -b } else { 0.0 };
+    let near = |a: f64, b: f64| {
+        if a > 0.0 {
+            a
+        } else if b < 0.0 {
+            -b
+        } else {
+            0.0
+        }
+    };
     let far = |a: f64, b: f64| a.abs().max(b.abs());
-    (near(x0, x1).hypot(near(y0, y1)), far(x0, x1).hypot(far(y0, y1)))
+    (
+        near(x0, x1).hypot(near(y0, y1)),
+        far(x0, x1).hypot(far(y0, y1)),
+    )
 }
 
 /// Unit sphere at distance 5, seen orthographically: the visible point under screen (x, y)
@@ -95,7 +116,12 @@ fn sphere_reference(res: u32, inner: f64, n: u32, f: &dyn Fn([f64; 3]) -> [f64; 
             }
         }
     }
-    Reference { width: res, height: res, rgb, mask }
+    Reference {
+        width: res,
+        height: res,
+        rgb,
+        mask,
+    }
 }
 
 /// Matte sphere (Kd 1, white) under a distantlight of intensity 1: Kd·Cl·max(0, N·L), with L
@@ -169,7 +195,12 @@ const FACES: [(&str, [f64; 3], [f64; 3], [f64; 3]); 6] = [
     ("py.tif", [0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]),
     ("ny.tif", [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
     ("pz.tif", [0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
-    ("nz.tif", [0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]),
+    (
+        "nz.tif",
+        [0.0, 0.0, -1.0],
+        [0.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+    ),
 ];
 
 /// Writes the analytic environment as six float TIFF faces of `size`², as a 90° camera at the

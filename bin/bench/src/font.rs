@@ -73,7 +73,15 @@ pub fn text_height(scale: f32) -> f32 {
 
 /// Draws `text` with its top-left corner at (x, y); `vertical` turns it 90° anticlockwise
 /// (reading bottom to top, the way a y-axis label reads), (x, y) then being its bottom-left.
-pub fn draw_text(pixmap: &mut Pixmap, x: f32, y: f32, scale: f32, text: &str, color: Color, vertical: bool) {
+pub fn draw_text(
+    pixmap: &mut Pixmap,
+    x: f32,
+    y: f32,
+    scale: f32,
+    text: &str,
+    color: Color,
+    vertical: bool,
+) {
     let mut paint = Paint::default();
     paint.set_color(color);
     paint.anti_alias = false;

@@ -113,6 +113,19 @@ impl Knob {
         }
     }
 
+    /// Whether the knob changes the image at all. Bucket size and thread count change only
+    /// the time (the renderer writes the same bits whatever the thread count, and buckets do
+    /// not change sampling), so they are left out of the Pareto front and the target table
+    /// and reported on their own.
+    pub fn changes_image(self) -> bool {
+        !matches!(self, Knob::BucketSize | Knob::Threads)
+    }
+
+    /// The knob with this [`Knob::name`].
+    pub fn from_name(name: &str) -> Option<Knob> {
+        ALL_KNOBS.into_iter().find(|k| k.name() == name)
+    }
+
     /// The knob's value as the user writes it (for [`Knob::SamplesAndRate`], "n n / rate").
     pub fn describe(self, value: f64) -> String {
         match self {
@@ -227,7 +240,10 @@ mod tests {
         assert_eq!((sr.pixel_samples, sr.shading_rate), (4, 0.5));
         assert_eq!(sr.shadow_samples, 16);
         let c = d.converged();
-        assert_eq!((c.pixel_samples, c.shading_rate, c.shadow_samples), (16, 0.1, 256));
+        assert_eq!(
+            (c.pixel_samples, c.shading_rate, c.shadow_samples),
+            (16, 0.1, 256)
+        );
         assert_eq!(c.shadow_blur, d.shadow_blur);
     }
 }

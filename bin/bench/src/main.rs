@@ -15,7 +15,10 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 #[derive(Parser)]
-#[command(name = "bench", about = "Speed against error of Illume's quality knobs")]
+#[command(
+    name = "bench",
+    about = "Speed against error of Illume's quality knobs"
+)]
 struct Args {
     /// Small images and fewer points (under 2 minutes on 2 cores; what CI runs).
     #[arg(long)]
@@ -39,20 +42,75 @@ struct Args {
     /// Threads of every point except the thread-count sweep (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
+    /// Redraw speed_error.png and speed_error.md from this speed_error.csv, measuring nothing.
+    #[arg(long)]
+    from_csv: Option<PathBuf>,
+}
+
+/// `--from-csv`: the points of a previous run, grouped by scene in file order.
+fn redraw(csv: &Path, out: &Path) -> ExitCode {
+    let points = match std::fs::read_to_string(csv)
+        .map_err(|e| e.to_string())
+        .and_then(|t| bench::csv::from_csv(&t))
+    {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("bench: {}: {e}", csv.display());
+            return ExitCode::from(2);
+        }
+    };
+    let mut results: Vec<(String, Vec<bench::sweep::Point>)> = Vec::new();
+    for p in points {
+        match results.iter_mut().find(|(name, _)| *name == p.scene) {
+            Some((_, v)) => v.push(p),
+            None => results.push((p.scene.clone(), vec![p])),
+        }
+    }
+    for (_, v) in &mut results {
+        bench::sweep::mark_pareto(v);
+    }
+    // The defaults are the settings of the defaults' own point (knob PIXELSAMPLES at 2).
+    let defaults = results
+        .iter()
+        .flat_map(|(_, v)| v.iter())
+        .find(|p| p.knob == Some(bench::knob::Knob::PixelSamples) && p.value == 2.0)
+        .map_or(Settings::defaults(256, 2), |p| p.settings);
+    let heading = format!("Redrawn by `bench --from-csv {}`.", csv.display());
+    match write_outputs(out, &results, &defaults, &heading) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("bench: {e}");
+            ExitCode::from(2)
+        }
+    }
 }
 
 fn default_render() -> Option<PathBuf> {
     let exe = std::env::current_exe().ok()?;
-    let p = exe.parent()?.join(format!("render{}", std::env::consts::EXE_SUFFIX));
+    let p = exe
+        .parent()?
+        .join(format!("render{}", std::env::consts::EXE_SUFFIX));
     p.exists().then_some(p)
 }
 
 fn scenes(quick: bool, rib_dir: &Path) -> Vec<Scene> {
     let res = if quick { 48 } else { 128 };
     let mut v = vec![
-        Scene { name: "matte_sphere".into(), kind: SceneKind::MatteSphere, res },
-        Scene { name: "disk_shadow".into(), kind: SceneKind::DiskShadow, res },
-        Scene { name: "mirror_sphere".into(), kind: SceneKind::MirrorSphere, res },
+        Scene {
+            name: "matte_sphere".into(),
+            kind: SceneKind::MatteSphere,
+            res,
+        },
+        Scene {
+            name: "disk_shadow".into(),
+            kind: SceneKind::DiskShadow,
+            res,
+        },
+        Scene {
+            name: "mirror_sphere".into(),
+            kind: SceneKind::MirrorSphere,
+            res,
+        },
     ];
     let gallery: &[(&str, &str)] = if quick {
         &[("sphere", "sphere.rib")]
@@ -68,21 +126,39 @@ fn scenes(quick: bool, rib_dir: &Path) -> Vec<Scene> {
     for (name, file) in gallery {
         let path = rib_dir.join(file);
         if path.exists() {
-            v.push(Scene { name: (*name).into(), kind: SceneKind::Gallery { path, scale }, res });
+            v.push(Scene {
+                name: (*name).into(),
+                kind: SceneKind::Gallery { path, scale },
+                res,
+            });
         } else {
-            eprintln!("bench: warning: {} not found; gallery scene {name} skipped", path.display());
+            eprintln!(
+                "bench: warning: {} not found; gallery scene {name} skipped",
+                path.display()
+            );
         }
     }
     v
 }
 
-fn write_outputs(out: &Path, results: &[(String, Vec<bench::sweep::Point>)], defaults: &Settings, heading: &str) -> Result<(), String> {
+fn write_outputs(
+    out: &Path,
+    results: &[(String, Vec<bench::sweep::Point>)],
+    defaults: &Settings,
+    heading: &str,
+) -> Result<(), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let all: Vec<_> = results.iter().flat_map(|(_, p)| p.iter().cloned()).collect();
+    let all: Vec<_> = results
+        .iter()
+        .flat_map(|(_, p)| p.iter().cloned())
+        .collect();
     let files = [
         ("speed_error.csv", bench::csv::to_csv(&all).into_bytes()),
         ("speed_error.png", bench::plot::plot_png(results)?),
-        ("speed_error.md", bench::table::markdown(results, defaults, heading).into_bytes()),
+        (
+            "speed_error.md",
+            bench::table::markdown(results, defaults, heading).into_bytes(),
+        ),
     ];
     for (name, bytes) in files {
         let path = out.join(name);
@@ -100,6 +176,9 @@ fn main() -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
+    if let Some(csv) = &args.from_csv {
+        return redraw(csv, &args.out);
+    }
     let Some(render) = args.render.clone().or_else(default_render) else {
         eprintln!("bench: no render binary next to bench; build it (cargo build --release -p render) or pass --render");
         return ExitCode::from(2);
@@ -117,17 +196,17 @@ fn main() -> ExitCode {
         .clone()
         .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../rib"));
     let own_scratch = args.scratch.is_none();
-    let scratch = args
-        .scratch
-        .clone()
-        .unwrap_or_else(|| std::env::temp_dir().join(format!("illume-bench-{}", std::process::id())));
-    let scratch = match std::fs::create_dir_all(&scratch).and_then(|()| std::fs::canonicalize(&scratch)) {
-        Ok(p) => p,
-        Err(e) => {
-            eprintln!("bench: {}: {e}", scratch.display());
-            return ExitCode::from(2);
-        }
-    };
+    let scratch = args.scratch.clone().unwrap_or_else(|| {
+        std::env::temp_dir().join(format!("illume-bench-{}", std::process::id()))
+    });
+    let scratch =
+        match std::fs::create_dir_all(&scratch).and_then(|()| std::fs::canonicalize(&scratch)) {
+            Ok(p) => p,
+            Err(e) => {
+                eprintln!("bench: {}: {e}", scratch.display());
+                return ExitCode::from(2);
+            }
+        };
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
@@ -153,7 +232,10 @@ fn main() -> ExitCode {
     }
     let elapsed = start.elapsed().as_secs_f64();
     let points: usize = results.iter().map(|(_, p)| p.len()).sum();
-    eprintln!("bench: {points} points over {} scenes in {elapsed:.1} s", results.len());
+    eprintln!(
+        "bench: {points} points over {} scenes in {elapsed:.1} s",
+        results.len()
+    );
     if own_scratch {
         let _ = std::fs::remove_dir_all(&scratch);
     }

@@ -57,7 +57,12 @@ pub fn parse_stats(stderr: &str) -> (u64, f64) {
 /// Renders `rib_file` in `dir` with `threads` workers. `Err` carries render's exit status and
 /// its last lines of stderr when it fails (exit code 2; 1 — rendered with errors — is also a
 /// failure here, because the image would not measure the knob).
-pub fn run_render(render: &Path, dir: &Path, rib_file: &str, threads: usize) -> Result<Cost, String> {
+pub fn run_render(
+    render: &Path,
+    dir: &Path,
+    rib_file: &str,
+    threads: usize,
+) -> Result<Cost, String> {
     let cpu_before = children_cpu_seconds();
     let start = Instant::now();
     let out = Command::new(render)

@@ -32,9 +32,10 @@ mod tests {
     /// Brute-force definition, to check the sweep against.
     fn dominated(points: &[(f64, f64)], i: usize) -> bool {
         let (t, e) = points[i];
-        points.iter().enumerate().any(|(j, &(tj, ej))| {
-            j != i && tj <= t && ej <= e && (tj < t || ej < e)
-        })
+        points
+            .iter()
+            .enumerate()
+            .any(|(j, &(tj, ej))| j != i && tj <= t && ej <= e && (tj < t || ej < e))
     }
 
     #[test]
@@ -65,13 +66,26 @@ mod tests {
         for i in 0..p.len() {
             let on = front.contains(&i);
             // Duplicated points: only one copy is kept, and it is not dominated.
-            let duplicate_kept = p.iter().enumerate().any(|(j, q)| j != i && *q == p[i] && front.contains(&j));
+            let duplicate_kept = p
+                .iter()
+                .enumerate()
+                .any(|(j, q)| j != i && *q == p[i] && front.contains(&j));
             if on {
-                assert!(!dominated(&p, i), "{i} {:?} on the front but dominated", p[i]);
+                assert!(
+                    !dominated(&p, i),
+                    "{i} {:?} on the front but dominated",
+                    p[i]
+                );
             } else if !duplicate_kept {
-                assert!(dominated(&p, i), "{i} {:?} off the front but not dominated", p[i]);
+                assert!(
+                    dominated(&p, i),
+                    "{i} {:?} off the front but not dominated",
+                    p[i]
+                );
             }
         }
-        assert!(front.windows(2).all(|w| p[w[0]].0 < p[w[1]].0 && p[w[0]].1 > p[w[1]].1));
+        assert!(front
+            .windows(2)
+            .all(|w| p[w[0]].0 < p[w[1]].0 && p[w[0]].1 > p[w[1]].1));
     }
 }

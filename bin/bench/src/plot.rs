@@ -88,18 +88,33 @@ fn line(pixmap: &mut Pixmap, pts: &[(f32, f32)], color: Color, width: f32, dash:
     let Some(path) = pb.finish() else { return };
     let stroke = Stroke {
         width,
-        dash: if dash { StrokeDash::new(vec![7.0, 4.0], 0.0) } else { None },
+        dash: if dash {
+            StrokeDash::new(vec![7.0, 4.0], 0.0)
+        } else {
+            None
+        },
         ..Stroke::default()
     };
     pixmap.stroke_path(&path, &paint(color), &stroke, Transform::identity(), None);
 }
 
 fn circle(pixmap: &mut Pixmap, x: f32, y: f32, r: f32, color: Color, filled: bool) {
-    let Some(path) = PathBuilder::from_circle(x, y, r) else { return };
+    let Some(path) = PathBuilder::from_circle(x, y, r) else {
+        return;
+    };
     if filled {
-        pixmap.fill_path(&path, &paint(color), tiny_skia::FillRule::Winding, Transform::identity(), None);
+        pixmap.fill_path(
+            &path,
+            &paint(color),
+            tiny_skia::FillRule::Winding,
+            Transform::identity(),
+            None,
+        );
     } else {
-        let stroke = Stroke { width: 1.5, ..Stroke::default() };
+        let stroke = Stroke {
+            width: 1.5,
+            ..Stroke::default()
+        };
         pixmap.stroke_path(&path, &paint(color), &stroke, Transform::identity(), None);
     }
 }
@@ -129,7 +144,15 @@ fn draw_axes(pixmap: &mut Pixmap, ax: &Axes, title: &str, y_label: &str) {
             if m == 1 {
                 line(pixmap, &[(x, y0), (x, y1)], c, 1.0, false);
                 let label = tick_label(d);
-                draw_text(pixmap, x - text_width(&label, 2.0) / 2.0, y1 + 8.0, 2.0, &label, black, false);
+                draw_text(
+                    pixmap,
+                    x - text_width(&label, 2.0) / 2.0,
+                    y1 + 8.0,
+                    2.0,
+                    &label,
+                    black,
+                    false,
+                );
             }
             line(pixmap, &[(x, y1), (x, y1 - len)], black, 1.0, false);
         }
@@ -146,28 +169,69 @@ fn draw_axes(pixmap: &mut Pixmap, ax: &Axes, title: &str, y_label: &str) {
                 line(pixmap, &[(x0, y), (x1, y)], grey, 1.0, false);
                 let label = tick_label(d);
                 let w = text_width(&label, 2.0);
-                draw_text(pixmap, x0 - w - 8.0, y - text_height(2.0) / 2.0, 2.0, &label, black, false);
+                draw_text(
+                    pixmap,
+                    x0 - w - 8.0,
+                    y - text_height(2.0) / 2.0,
+                    2.0,
+                    &label,
+                    black,
+                    false,
+                );
             }
             line(pixmap, &[(x0, y), (x0 + len, y)], black, 1.0, false);
         }
     }
-    line(pixmap, &[(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)], black, 1.5, false);
+    line(
+        pixmap,
+        &[(x0, y0), (x1, y0), (x1, y1), (x0, y1), (x0, y0)],
+        black,
+        1.5,
+        false,
+    );
     let xl = "WALL TIME (S)";
-    draw_text(pixmap, (x0 + x1 - text_width(xl, 2.0)) / 2.0, y1 + 34.0, 2.0, xl, black, false);
+    draw_text(
+        pixmap,
+        (x0 + x1 - text_width(xl, 2.0)) / 2.0,
+        y1 + 34.0,
+        2.0,
+        xl,
+        black,
+        false,
+    );
     let yw = text_width(y_label, 2.0);
-    draw_text(pixmap, x0 - 88.0, (y0 + y1 + yw) / 2.0, 2.0, y_label, black, true);
+    draw_text(
+        pixmap,
+        x0 - 88.0,
+        (y0 + y1 + yw) / 2.0,
+        2.0,
+        y_label,
+        black,
+        true,
+    );
     draw_text(pixmap, x0, y0 - 26.0, 2.0, title, black, false);
 }
 
 /// Draws one scene's panel with its plot area's top-left at (ox, oy).
 fn draw_panel(pixmap: &mut Pixmap, ox: f32, oy: f32, scene: &str, points: &[Point]) {
-    let swept: Vec<(&Point, (f64, f64))> = points.iter().filter_map(|p| xy(p).map(|q| (p, q))).collect();
+    let swept: Vec<(&Point, (f64, f64))> = points
+        .iter()
+        .filter_map(|p| xy(p).map(|q| (p, q)))
+        .collect();
     let closed = swept.iter().any(|(p, _)| p.against_closed_form());
     let (Some(x), Some(y)) = (
         decades(swept.iter().map(|(_, q)| q.0)),
         decades(swept.iter().map(|(_, q)| q.1)),
     ) else {
-        draw_text(pixmap, ox + 20.0, oy + 40.0, 2.0, &format!("{scene}: NO DATA"), Color::BLACK, false);
+        draw_text(
+            pixmap,
+            ox + 20.0,
+            oy + 40.0,
+            2.0,
+            &format!("{scene}: NO DATA"),
+            Color::BLACK,
+            false,
+        );
         return;
     };
     let ax = Axes {
@@ -197,7 +261,11 @@ fn draw_panel(pixmap: &mut Pixmap, ox: f32, oy: f32, scene: &str, points: &[Poin
             circle(pixmap, px, py, 3.5, knob_color(knob), true);
         }
     }
-    let mut front: Vec<(f64, f64)> = swept.iter().filter(|(p, _)| p.pareto).map(|(_, q)| *q).collect();
+    let mut front: Vec<(f64, f64)> = swept
+        .iter()
+        .filter(|(p, _)| p.pareto)
+        .map(|(_, q)| *q)
+        .collect();
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
     let front: Vec<(f32, f32)> = front.iter().map(|&(t, e)| ax.to_px(t, e)).collect();
     line(pixmap, &front, Color::BLACK, 1.5, true);
@@ -209,7 +277,10 @@ fn draw_panel(pixmap: &mut Pixmap, ox: f32, oy: f32, scene: &str, points: &[Poin
 fn draw_legend(pixmap: &mut Pixmap, y: f32, knobs: &[Knob]) {
     let mut x = 20.0;
     let mut row_y = y;
-    let mut entries: Vec<(String, Option<Knob>)> = knobs.iter().map(|k| (k.name().to_string(), Some(*k))).collect();
+    let mut entries: Vec<(String, Option<Knob>)> = knobs
+        .iter()
+        .map(|k| (k.name().to_string(), Some(*k)))
+        .collect();
     entries.push(("PARETO FRONT".into(), None));
     for (name, knob) in entries {
         let w = 34.0 + text_width(&name, 2.0) + 24.0;
@@ -220,7 +291,13 @@ fn draw_legend(pixmap: &mut Pixmap, y: f32, knobs: &[Knob]) {
         let cy = row_y + 7.0;
         match knob {
             Some(k) => {
-                line(pixmap, &[(x, cy), (x + 26.0, cy)], knob_color(k), 2.0, false);
+                line(
+                    pixmap,
+                    &[(x, cy), (x + 26.0, cy)],
+                    knob_color(k),
+                    2.0,
+                    false,
+                );
                 circle(pixmap, x + 13.0, cy, 3.5, knob_color(k), true);
             }
             None => {
@@ -241,11 +318,21 @@ pub fn plot_png(scenes: &[(String, Vec<Point>)]) -> Result<Vec<u8>, String> {
     pixmap.fill(Color::WHITE);
     for (i, (name, points)) in scenes.iter().enumerate() {
         let (col, row) = (i as u32 % COLUMNS, i as u32 / COLUMNS);
-        draw_panel(&mut pixmap, (col * PANEL_W) as f32, (row * PANEL_H) as f32, name, points);
+        draw_panel(
+            &mut pixmap,
+            (col * PANEL_W) as f32,
+            (row * PANEL_H) as f32,
+            name,
+            points,
+        );
     }
     let used: Vec<Knob> = ALL_KNOBS
         .into_iter()
-        .filter(|k| scenes.iter().any(|(_, ps)| ps.iter().any(|p| p.knob == Some(*k))))
+        .filter(|k| {
+            scenes
+                .iter()
+                .any(|(_, ps)| ps.iter().any(|p| p.knob == Some(*k)))
+        })
         .collect();
     draw_legend(&mut pixmap, (PANEL_H * rows + 10) as f32, &used);
     pixmap.encode_png().map_err(|e| format!("plot: {e}"))

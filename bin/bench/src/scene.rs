@@ -204,7 +204,10 @@ mod tests {
                     Translate 0 0 5\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\n";
         let s = Settings::defaults(256, 2).with(crate::knob::Knob::ShadingRate, 0.5);
         let rib = gallery_rib(text, 0.5, &s, &common_options(&s)).unwrap();
-        assert!(!rib.contains("a.tif") && !rib.contains("PixelSamples 3 3"), "{rib}");
+        assert!(
+            !rib.contains("a.tif") && !rib.contains("PixelSamples 3 3"),
+            "{rib}"
+        );
         assert!(rib.contains("Format 160 120 1\n"), "{rib}");
         assert!(rib.contains("PixelSamples 2 2\n") && rib.contains("ShadingRate 0.5\n"));
         assert!(rib.find("Translate").unwrap() < rib.find("out.tif").unwrap());

@@ -52,7 +52,10 @@ pub struct SweepConfig<'a> {
 fn to_rgb(img: &illume_imageio::Image) -> Result<Vec<[f64; 3]>, String> {
     let idx: Vec<usize> = ["r", "g", "b"]
         .iter()
-        .map(|c| img.channel_index(c).ok_or_else(|| format!("output has no channel {c}")))
+        .map(|c| {
+            img.channel_index(c)
+                .ok_or_else(|| format!("output has no channel {c}"))
+        })
         .collect::<Result<_, _>>()?;
     let nc = img.channels.len();
     Ok(img
@@ -63,7 +66,12 @@ fn to_rgb(img: &illume_imageio::Image) -> Result<Vec<[f64; 3]>, String> {
 }
 
 /// Renders the scene once with `s` (the fastest of `repeat` runs) and reads `out.tif` back.
-fn render_point(scene: &Scene, s: &Settings, dir: &Path, cfg: &SweepConfig) -> Result<(Cost, Vec<[f64; 3]>), String> {
+fn render_point(
+    scene: &Scene,
+    s: &Settings,
+    dir: &Path,
+    cfg: &SweepConfig,
+) -> Result<(Cost, Vec<[f64; 3]>), String> {
     std::fs::write(dir.join("scene.rib"), scene.rib(s)?).map_err(|e| e.to_string())?;
     let mut best: Option<Cost> = None;
     for _ in 0..cfg.repeat.max(1) {
@@ -90,7 +98,10 @@ pub fn sweep_scene(scene: &Scene, cfg: &SweepConfig) -> Result<Vec<Point>, Strin
     let closed = scene.closed_form();
     let conv_settings = cfg.defaults.converged();
     let (conv_cost, converged) = render_point(scene, &conv_settings, &dir, cfg)?;
-    eprintln!("bench: {}: converged reference in {:.2} s", scene.name, conv_cost.wall_seconds);
+    eprintln!(
+        "bench: {}: converged reference in {:.2} s",
+        scene.name, conv_cost.wall_seconds
+    );
     let mut points = vec![Point {
         scene: scene.name.clone(),
         knob: None,
@@ -109,7 +120,11 @@ pub fn sweep_scene(scene: &Scene, cfg: &SweepConfig) -> Result<Vec<Point>, Strin
             let measured = match done.iter().find(|p| p.settings == s) {
                 Some(p) => Ok((p.cost, p.vs_converged, p.vs_closed)),
                 None => render_point(scene, &s, &dir, cfg).map(|(cost, rgb)| {
-                    (cost, compare(&rgb, &converged, None), closed_stats(closed.as_ref(), &rgb))
+                    (
+                        cost,
+                        compare(&rgb, &converged, None),
+                        closed_stats(closed.as_ref(), &rgb),
+                    )
                 }),
             };
             match measured {
@@ -142,16 +157,21 @@ pub fn sweep_scene(scene: &Scene, cfg: &SweepConfig) -> Result<Vec<Point>, Strin
     Ok(points)
 }
 
-/// Marks the Pareto front of the swept points (the reference is not a candidate: it is the
-/// yardstick of the converged errors). A setting several knobs share is marked once.
+/// Marks the Pareto front of the swept points. Not candidates: the reference (it is the
+/// yardstick of the converged errors) and the time-only knobs ([`Knob::changes_image`]), whose
+/// points have the defaults' image and differ only by timing. A setting several knobs share
+/// is marked once.
 pub fn mark_pareto(points: &mut [Point]) {
     let xy: Vec<(f64, f64)> = points
         .iter()
         .map(|p| match p.knob {
-            Some(_) => (p.cost.wall_seconds, p.error()),
-            None => (f64::NAN, f64::NAN),
+            Some(k) if k.changes_image() => (p.cost.wall_seconds, p.error()),
+            _ => (f64::NAN, f64::NAN),
         })
         .collect();
+    for p in points.iter_mut() {
+        p.pareto = false;
+    }
     for i in pareto_front(&xy) {
         points[i].pareto = true;
     }

@@ -7,8 +7,9 @@ use crate::sweep::Point;
 pub const TARGETS: [f64; 5] = [3e-2, 1e-2, 3e-3, 1e-3, 3e-4];
 
 /// "defaults" or the knob setting that differs from the defaults.
-fn settings_name(p: &Point) -> String {
+fn settings_name(p: &Point, defaults: &Settings) -> String {
     match p.knob {
+        Some(_) if p.settings == *defaults => "defaults".into(),
         Some(k) => k.describe(p.value),
         None => "converged reference".into(),
     }
@@ -19,7 +20,13 @@ fn fmt_err(x: Option<f64>) -> String {
 }
 
 fn fmt_psnr(x: Option<f64>) -> String {
-    x.map_or("—".into(), |e| if e.is_finite() { format!("{e:.1}") } else { "∞".into() })
+    x.map_or("—".into(), |e| {
+        if e.is_finite() {
+            format!("{e:.1}")
+        } else {
+            "∞".into()
+        }
+    })
 }
 
 /// Points with a setting that several knobs share listed once (first knob's name).
@@ -33,11 +40,12 @@ fn distinct(points: &[Point]) -> Vec<&Point> {
     out
 }
 
-/// The fastest measured point whose error is at most `target`.
+/// The fastest measured point whose error is at most `target`, among the knobs that change
+/// the image.
 pub fn fastest_within(points: &[Point], target: f64) -> Option<&Point> {
     distinct(points)
         .into_iter()
-        .filter(|p| p.error() <= target)
+        .filter(|p| p.knob.is_some_and(|k| k.changes_image()) && p.error() <= target)
         .min_by(|a, b| a.cost.wall_seconds.total_cmp(&b.cost.wall_seconds))
 }
 
@@ -45,8 +53,10 @@ pub fn fastest_within(points: &[Point], target: f64) -> Option<&Point> {
 pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &str) -> String {
     let mut md = String::new();
     md.push_str(heading);
-    md.push_str("\n\nFastest measured setting whose RMSE is at most the target (one knob moved from the \
-                 defaults, or PixelSamples and ShadingRate together); wall time in seconds:\n\n");
+    md.push_str(
+        "\n\nFastest measured setting whose RMSE is at most the target (one knob moved from the \
+                 defaults, or PixelSamples and ShadingRate together); wall time in seconds:\n\n",
+    );
     md.push_str("| scene (error vs) |");
     for t in TARGETS {
         md.push_str(&format!(" ≤ {t:.0e} |"));
@@ -55,11 +65,19 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
     md.push_str(&"---|".repeat(TARGETS.len()));
     md.push('\n');
     for (name, points) in scenes {
-        let against = if points.iter().any(|p| p.against_closed_form()) { "closed form" } else { "converged" };
+        let against = if points.iter().any(|p| p.against_closed_form()) {
+            "closed form"
+        } else {
+            "converged"
+        };
         md.push_str(&format!("| {name} ({against}) |"));
         for t in TARGETS {
             match fastest_within(points, t) {
-                Some(p) => md.push_str(&format!(" {}: {:.3} s |", settings_name(p), p.cost.wall_seconds)),
+                Some(p) => md.push_str(&format!(
+                    " {}: {:.3} s |",
+                    settings_name(p, defaults),
+                    p.cost.wall_seconds
+                )),
                 None => md.push_str(" not reached |"),
             }
         }
@@ -67,7 +85,9 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
     }
     for (name, points) in scenes {
         md.push_str(&format!("\n**{name}**"));
-        let def = points.iter().find(|p| p.knob.is_some() && p.settings == *defaults);
+        let def = points
+            .iter()
+            .find(|p| p.knob.is_some() && p.settings == *defaults);
         if let Some(d) = def {
             md.push_str(&format!(
                 ": defaults (PixelSamples {n} {n}, ShadingRate {r}) RMSE {e:.2e} in {t:.3} s, {m} micropolygons",
@@ -79,10 +99,30 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
             ));
         }
         if let Some(c) = points.iter().find(|p| p.knob.is_none()) {
-            md.push_str(&format!("; converged reference {:.2} s", c.cost.wall_seconds));
+            md.push_str(&format!(
+                "; converged reference {:.2} s",
+                c.cost.wall_seconds
+            ));
             if let Some(e) = c.vs_closed {
                 md.push_str(&format!(", RMSE {:.2e} vs the closed form", e.rmse));
             }
+        }
+        let time_only: Vec<String> = points
+            .iter()
+            .filter(|p| p.knob.is_some_and(|k| !k.changes_image()))
+            .map(|p| {
+                format!(
+                    "{} {:.3} s",
+                    settings_name(p, defaults),
+                    p.cost.wall_seconds
+                )
+            })
+            .collect();
+        if !time_only.is_empty() {
+            md.push_str(&format!(
+                "; time only (same image): {}",
+                time_only.join(", ")
+            ));
         }
         md.push_str(". Pareto front:\n\n");
         md.push_str("| setting | wall (s) | CPU (s) | peak RSS (MB) | micropolygons | RMSE vs converged | max | PSNR (dB) | RMSE vs closed form | max | PSNR (dB) |\n");
@@ -94,7 +134,7 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
             let k = p.vs_closed;
             md.push_str(&format!(
                 "| {} | {:.3} | {:.2} | {:.0} | {} | {} | {} | {} | {} | {} | {} |\n",
-                settings_name(p),
+                settings_name(p, defaults),
                 p.cost.wall_seconds,
                 p.cost.cpu_seconds,
                 p.cost.peak_rss_mb,

@@ -37,7 +37,7 @@ fn scenes() -> Vec<(String, Vec<Point>)> {
         point("a", Knob::PixelSamples, 4.0, 0.3, 4e-3),
         point("a", Knob::ShadingRate, 4.0, 0.04, 3e-2),
         point("a", Knob::ShadingRate, 0.5, 0.2, 9e-3), // dominated by PixelSamples 2
-        point("a", Knob::Threads, 1.0, 0.17, 8e-3),   // dominated
+        point("a", Knob::Threads, 1.0, 0.17, 8e-3),    // dominated
     ];
     mark_pareto(&mut a);
     let mut b = vec![
@@ -89,26 +89,64 @@ fn plot_is_a_png_with_curves_and_pareto_rings() {
     let px: Vec<&[u8]> = buf[..info.buffer_size()].chunks_exact(4).collect();
     let count = |rgb: [u8; 3]| px.iter().filter(|p| p[..3] == rgb).count();
     // Every knob's curve in its own colour, black rings and labels, a white ground.
-    for knob in [Knob::PixelSamples, Knob::ShadingRate, Knob::ShadowSamples, Knob::Threads] {
+    for knob in [
+        Knob::PixelSamples,
+        Knob::ShadingRate,
+        Knob::ShadowSamples,
+        Knob::Threads,
+    ] {
         let n = count(bench::plot::knob_rgb(knob));
         assert!(n > 20, "{} curve missing ({n} pixels)", knob.name());
     }
-    let colours: std::collections::HashSet<[u8; 3]> =
-        bench::knob::ALL_KNOBS.iter().map(|&k| bench::plot::knob_rgb(k)).collect();
-    assert_eq!(colours.len(), bench::knob::ALL_KNOBS.len(), "two knobs share a colour");
-    assert!(count([0, 0, 0]) > 1000, "axes, labels and Pareto rings missing");
+    let colours: std::collections::HashSet<[u8; 3]> = bench::knob::ALL_KNOBS
+        .iter()
+        .map(|&k| bench::plot::knob_rgb(k))
+        .collect();
+    assert_eq!(
+        colours.len(),
+        bench::knob::ALL_KNOBS.len(),
+        "two knobs share a colour"
+    );
+    assert!(
+        count([0, 0, 0]) > 1000,
+        "axes, labels and Pareto rings missing"
+    );
     assert!(count([255, 255, 255]) > px.len() / 2);
 }
 
 #[test]
 fn markdown_names_the_fastest_setting_under_each_target() {
     let md = bench::table::markdown(&scenes(), &Settings::defaults(256, 2), "heading");
-    let row = md.lines().find(|l| l.starts_with("| a (converged)")).unwrap();
+    let row = md
+        .lines()
+        .find(|l| l.starts_with("| a (converged)"))
+        .unwrap();
     let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-    // Targets 3e-2, 1e-2, 3e-3, …: ShadingRate 4 (0.04 s, 3e-2), then PixelSamples 2 2
+    // Targets 3e-2, 1e-2, 3e-3, …: ShadingRate 4 (0.04 s, 3e-2), then PixelSamples 2 2 = defaults
     // (0.1 s, 8e-3; ShadingRate 0.5 at 9e-3 is slower), then nothing reaches 3e-3.
     assert_eq!(cells[2], "ShadingRate 4: 0.040 s");
-    assert_eq!(cells[3], "PixelSamples 2 2: 0.100 s");
+    assert_eq!(cells[3], "defaults: 0.100 s");
     assert_eq!(cells[4], "not reached");
-    assert!(md.contains("RMSE 8.00e-3 in 0.100 s"), "defaults line missing:\n{md}");
+    assert!(
+        md.contains("RMSE 8.00e-3 in 0.100 s"),
+        "defaults line missing:\n{md}"
+    );
+}
+
+#[test]
+fn csv_reads_back_what_it_wrote() {
+    let all: Vec<Point> = scenes().into_iter().flat_map(|(_, p)| p).collect();
+    let back = bench::csv::from_csv(&bench::csv::to_csv(&all)).unwrap();
+    assert_eq!(back.len(), all.len());
+    for (a, b) in all.iter().zip(&back) {
+        assert_eq!(
+            (&a.scene, a.knob, a.value, a.settings, a.pareto),
+            (&b.scene, b.knob, b.value, b.settings, b.pareto)
+        );
+        assert!((a.cost.wall_seconds - b.cost.wall_seconds).abs() < 1e-4);
+        let (ea, eb) = (a.vs_converged.unwrap(), b.vs_converged.unwrap());
+        assert!((ea.rmse - eb.rmse).abs() <= 1e-6 * ea.rmse);
+        assert!(b.vs_closed.is_none());
+    }
+    assert!(bench::csv::from_csv("scene,knob\na,b\n").is_err());
 }
