@@ -188,8 +188,11 @@ pub fn disk_shadow(res: u32) -> Reference {
     }
 }
 
-/// The six faces of Table 9.1 (file; view axis; axis toward the top; axis toward the right).
-const FACES: [(&str, [f64; 3], [f64; 3], [f64; 3]); 6] = [
+/// A cube face: its file, view axis, axis toward the top, axis toward the right.
+type Face = (&'static str, [f64; 3], [f64; 3], [f64; 3]);
+
+/// The six faces of Table 9.1.
+const FACES: [Face; 6] = [
     ("px.tif", [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]),
     ("nx.tif", [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
     ("py.tif", [0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]),
@@ -216,8 +219,8 @@ pub fn write_cube_faces(dir: &Path, size: u32) -> Result<(), ImageError> {
                 let len = dot(d, d).sqrt();
                 let c = environment(d.map(|x| x / len));
                 let at = ((j * size + i) * 3) as usize;
-                for k in 0..3 {
-                    img.data[at + k] = c[k] as f32;
+                for (dst, v) in img.data[at..at + 3].iter_mut().zip(c) {
+                    *dst = v as f32;
                 }
             }
         }
