@@ -94,7 +94,7 @@ fn default_render() -> Option<PathBuf> {
 }
 
 fn scenes(quick: bool, rib_dir: &Path) -> Vec<Scene> {
-    let res = if quick { 48 } else { 128 };
+    let res = if quick { 48 } else { 160 };
     let mut v = vec![
         Scene {
             name: "matte_sphere".into(),
@@ -244,7 +244,7 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     }
     let heading = format!(
-        "Measured by `bench{}` in {elapsed:.0} s ({} threads, best of {} runs per point).",
+        "Measured by `bench{}` in {elapsed:.0} s ({} threads, the smallest wall and CPU time of {} runs per point).",
         if args.quick { " --quick" } else { "" },
         threads,
         cfg.repeat.max(1)

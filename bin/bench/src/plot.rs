@@ -1,4 +1,4 @@
-//! `speed_error.png`: one log-log panel per scene (wall time on x, RMSE on y), one polyline per
+//! `speed_error.png`: one log-log panel per scene (render CPU time on x, RMSE on y), one polyline per
 //! knob in sweep order, the Pareto front dashed in black with rings on its points.
 
 use crate::font::{draw_text, text_height, text_width};
@@ -125,7 +125,7 @@ fn tick_label(exp: i32) -> String {
 
 /// The plottable (time, error) of a swept point.
 fn xy(p: &Point) -> Option<(f64, f64)> {
-    let (t, e) = (p.cost.wall_seconds, p.error());
+    let (t, e) = (p.time(), p.error());
     (p.knob.is_some() && t > 0.0 && t.is_finite() && e > 0.0 && e.is_finite()).then_some((t, e))
 }
 
@@ -189,7 +189,7 @@ fn draw_axes(pixmap: &mut Pixmap, ax: &Axes, title: &str, y_label: &str) {
         1.5,
         false,
     );
-    let xl = "WALL TIME (S)";
+    let xl = "CPU TIME (S)";
     draw_text(
         pixmap,
         (x0 + x1 - text_width(xl, 2.0)) / 2.0,

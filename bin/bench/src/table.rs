@@ -46,7 +46,7 @@ pub fn fastest_within(points: &[Point], target: f64) -> Option<&Point> {
     distinct(points)
         .into_iter()
         .filter(|p| p.knob.is_some_and(|k| k.changes_image()) && p.error() <= target)
-        .min_by(|a, b| a.cost.wall_seconds.total_cmp(&b.cost.wall_seconds))
+        .min_by(|a, b| a.time().total_cmp(&b.time()))
 }
 
 /// The whole markdown: the target table, then per scene its defaults and Pareto front.
@@ -55,7 +55,7 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
     md.push_str(heading);
     md.push_str(
         "\n\nFastest measured setting whose RMSE is at most the target (one knob moved from the \
-                 defaults, or PixelSamples and ShadingRate together); wall time in seconds:\n\n",
+                 defaults, or PixelSamples and ShadingRate together), with its render CPU time:\n\n",
     );
     md.push_str("| scene (error vs) |");
     for t in TARGETS {
@@ -74,9 +74,9 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
         for t in TARGETS {
             match fastest_within(points, t) {
                 Some(p) => md.push_str(&format!(
-                    " {}: {:.3} s |",
+                    " {}: {:.2} s |",
                     settings_name(p, defaults),
-                    p.cost.wall_seconds
+                    p.time()
                 )),
                 None => md.push_str(" not reached |"),
             }
@@ -90,17 +90,19 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
             .find(|p| p.knob.is_some() && p.settings == *defaults);
         if let Some(d) = def {
             md.push_str(&format!(
-                ": defaults (PixelSamples {n} {n}, ShadingRate {r}) RMSE {e:.2e} in {t:.3} s, {m} micropolygons",
+                ": defaults (PixelSamples {n} {n}, ShadingRate {r}) RMSE {e:.2e} in CPU {t:.2} s (wall {w:.3} s), {m} micropolygons",
                 n = defaults.pixel_samples,
                 r = defaults.shading_rate,
                 e = d.error(),
-                t = d.cost.wall_seconds,
+                t = d.time(),
+                w = d.cost.wall_seconds,
                 m = d.cost.micropolygons
             ));
         }
         if let Some(c) = points.iter().find(|p| p.knob.is_none()) {
             md.push_str(&format!(
-                "; converged reference {:.2} s",
+                "; converged reference CPU {:.2} s (wall {:.2} s)",
+                c.time(),
                 c.cost.wall_seconds
             ));
             if let Some(e) = c.vs_closed {
@@ -110,12 +112,14 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
         let time_only: Vec<String> = points
             .iter()
             .filter(|p| p.knob.is_some_and(|k| !k.changes_image()))
-            .map(|p| {
-                format!(
-                    "{} {:.3} s",
-                    settings_name(p, defaults),
-                    p.cost.wall_seconds
-                )
+            .filter_map(|p| {
+                let k = p.knob?;
+                Some(format!(
+                    "{} wall {:.3} s / CPU {:.2} s",
+                    k.describe(p.value),
+                    p.cost.wall_seconds,
+                    p.time()
+                ))
             })
             .collect();
         if !time_only.is_empty() {
@@ -125,18 +129,18 @@ pub fn markdown(scenes: &[(String, Vec<Point>)], defaults: &Settings, heading: &
             ));
         }
         md.push_str(". Pareto front:\n\n");
-        md.push_str("| setting | wall (s) | CPU (s) | peak RSS (MB) | micropolygons | RMSE vs converged | max | PSNR (dB) | RMSE vs closed form | max | PSNR (dB) |\n");
+        md.push_str("| setting | CPU (s) | wall (s) | peak RSS (MB) | micropolygons | RMSE vs converged | max | PSNR (dB) | RMSE vs closed form | max | PSNR (dB) |\n");
         md.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
         let mut front: Vec<&Point> = points.iter().filter(|p| p.pareto).collect();
-        front.sort_by(|a, b| a.cost.wall_seconds.total_cmp(&b.cost.wall_seconds));
+        front.sort_by(|a, b| a.time().total_cmp(&b.time()));
         for p in front {
             let c = p.vs_converged;
             let k = p.vs_closed;
             md.push_str(&format!(
-                "| {} | {:.3} | {:.2} | {:.0} | {} | {} | {} | {} | {} | {} | {} |\n",
+                "| {} | {:.2} | {:.3} | {:.0} | {} | {} | {} | {} | {} | {} | {} |\n",
                 settings_name(p, defaults),
+                p.time(),
                 p.cost.wall_seconds,
-                p.cost.cpu_seconds,
                 p.cost.peak_rss_mb,
                 p.cost.micropolygons,
                 fmt_err(c.map(|e| e.rmse)),
