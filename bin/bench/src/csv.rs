@@ -36,7 +36,7 @@ pub fn to_csv(points: &[Point]) -> String {
         let s = &p.settings;
         let c = &p.cost;
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{:.4},{},{:.1},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{:.1},{},{},{},{}\n",
             p.scene,
             p.knob.map_or("converged", |k| k.name()),
             num(p.value),

@@ -94,7 +94,7 @@ fn default_render() -> Option<PathBuf> {
 }
 
 fn scenes(quick: bool, rib_dir: &Path) -> Vec<Scene> {
-    let res = if quick { 48 } else { 160 };
+    let res = if quick { 48 } else { 224 };
     let mut v = vec![
         Scene {
             name: "matte_sphere".into(),
@@ -122,7 +122,7 @@ fn scenes(quick: bool, rib_dir: &Path) -> Vec<Scene> {
             ("fig9_8_ward", "ch9/fig9_8_ward.rib"),
         ]
     };
-    let scale = if quick { 0.25 } else { 0.5 };
+    let scale = if quick { 0.25 } else { 0.75 };
     for (name, file) in gallery {
         let path = rib_dir.join(file);
         if path.exists() {

@@ -9,7 +9,9 @@ use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform
 const PANEL_W: u32 = 600;
 const PANEL_H: u32 = 420;
 const COLUMNS: u32 = 2;
-const LEGEND_H: u32 = 70;
+/// Height of one legend row and the legend's margin.
+const LEGEND_ROW: f32 = 26.0;
+const LEGEND_MARGIN: f32 = 20.0;
 /// Plot-area margins inside a panel: left (tick labels + axis label), right, top, bottom.
 const MARGIN: [f32; 4] = [92.0, 20.0, 40.0, 62.0];
 
@@ -274,20 +276,33 @@ fn draw_panel(pixmap: &mut Pixmap, ox: f32, oy: f32, scene: &str, points: &[Poin
     }
 }
 
-fn draw_legend(pixmap: &mut Pixmap, y: f32, knobs: &[Knob]) {
-    let mut x = 20.0;
-    let mut row_y = y;
-    let mut entries: Vec<(String, Option<Knob>)> = knobs
-        .iter()
-        .map(|k| (k.name().to_string(), Some(*k)))
-        .collect();
-    entries.push(("PARETO FRONT".into(), None));
-    for (name, knob) in entries {
-        let w = 34.0 + text_width(&name, 2.0) + 24.0;
-        if x + w > pixmap.width() as f32 {
-            x = 20.0;
-            row_y += 26.0;
+/// Legend entries (`None`: the Pareto front) placed left to right, wrapping at `width`:
+/// (entry, x, row).
+fn legend_layout(width: f32, knobs: &[Knob]) -> Vec<(Option<Knob>, f32, u32)> {
+    let mut entries: Vec<Option<Knob>> = knobs.iter().map(|k| Some(*k)).collect();
+    entries.push(None);
+    let (mut x, mut row) = (LEGEND_MARGIN, 0);
+    let mut out = Vec::new();
+    for knob in entries {
+        let w = 34.0 + text_width(legend_name(knob), 2.0) + 24.0;
+        if x + w > width && x > LEGEND_MARGIN {
+            x = LEGEND_MARGIN;
+            row += 1;
         }
+        out.push((knob, x, row));
+        x += w;
+    }
+    out
+}
+
+fn legend_name(knob: Option<Knob>) -> &'static str {
+    knob.map_or("PARETO FRONT", |k| k.name())
+}
+
+fn draw_legend(pixmap: &mut Pixmap, y: f32, knobs: &[Knob]) {
+    for (knob, x, row) in legend_layout(pixmap.width() as f32, knobs) {
+        let name = legend_name(knob);
+        let row_y = y + row as f32 * LEGEND_ROW;
         let cy = row_y + 7.0;
         match knob {
             Some(k) => {
@@ -305,15 +320,25 @@ fn draw_legend(pixmap: &mut Pixmap, y: f32, knobs: &[Knob]) {
                 circle(pixmap, x + 13.0, cy, 7.0, Color::BLACK, false);
             }
         }
-        draw_text(pixmap, x + 34.0, row_y, 2.0, &name, Color::BLACK, false);
-        x += w;
+        draw_text(pixmap, x + 34.0, row_y, 2.0, name, Color::BLACK, false);
     }
 }
 
 /// The PNG bytes of the plot of `scenes` (name, that scene's points).
 pub fn plot_png(scenes: &[(String, Vec<Point>)]) -> Result<Vec<u8>, String> {
     let rows = (scenes.len() as u32).div_ceil(COLUMNS).max(1);
-    let (w, h) = (PANEL_W * COLUMNS, PANEL_H * rows + LEGEND_H);
+    let used: Vec<Knob> = ALL_KNOBS
+        .into_iter()
+        .filter(|k| {
+            scenes
+                .iter()
+                .any(|(_, ps)| ps.iter().any(|p| p.knob == Some(*k)))
+        })
+        .collect();
+    let w = PANEL_W * COLUMNS;
+    let legend_rows = legend_layout(w as f32, &used).last().map_or(0, |e| e.2) + 1;
+    let legend_h = (legend_rows as f32 * LEGEND_ROW + LEGEND_MARGIN) as u32;
+    let h = PANEL_H * rows + legend_h;
     let mut pixmap = Pixmap::new(w, h).ok_or("plot: cannot allocate the image")?;
     pixmap.fill(Color::WHITE);
     for (i, (name, points)) in scenes.iter().enumerate() {
@@ -326,14 +351,6 @@ pub fn plot_png(scenes: &[(String, Vec<Point>)]) -> Result<Vec<u8>, String> {
             points,
         );
     }
-    let used: Vec<Knob> = ALL_KNOBS
-        .into_iter()
-        .filter(|k| {
-            scenes
-                .iter()
-                .any(|(_, ps)| ps.iter().any(|p| p.knob == Some(*k)))
-        })
-        .collect();
     draw_legend(&mut pixmap, (PANEL_H * rows + 10) as f32, &used);
     pixmap.encode_png().map_err(|e| format!("plot: {e}"))
 }

@@ -83,8 +83,9 @@ fn plot_is_a_png_with_curves_and_pareto_rings() {
     let mut reader = decoder.read_info().unwrap();
     let mut buf = vec![0; reader.output_buffer_size().unwrap()];
     let info = reader.next_frame(&mut buf).unwrap();
-    // Two panels of 600×420 side by side plus the 70-pixel legend.
-    assert_eq!((info.width, info.height), (1200, 490));
+    // Two panels of 600×420 side by side plus the legend: its 5 entries fit one 26-pixel row
+    // with a 20-pixel margin.
+    assert_eq!((info.width, info.height), (1200, 466));
     assert_eq!(info.color_type, png::ColorType::Rgba);
     let px: Vec<&[u8]> = buf[..info.buffer_size()].chunks_exact(4).collect();
     let count = |rgb: [u8; 3]| px.iter().filter(|p| p[..3] == rgb).count();
