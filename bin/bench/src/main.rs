@@ -1,0 +1,257 @@
+//! `bench`: sweeps the renderer's quality knobs over closed-form and gallery scenes and writes
+//! `speed_error.csv`, `speed_error.png` and `speed_error.md` (issue 8).
+//!
+//! Exit codes: 0 every point measured, 1 some points or scenes failed (the rest written),
+//! 2 usage error or nothing could be measured.
+#![forbid(unsafe_code)]
+
+use bench::knob::Settings;
+use bench::output::write_atomic;
+use bench::scene::{Scene, SceneKind};
+use bench::sweep::{sweep_scene, SweepConfig};
+use clap::Parser;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(
+    name = "bench",
+    about = "Speed against error of Illume's quality knobs"
+)]
+struct Args {
+    /// Small images and fewer points (under 2 minutes on 2 cores; what CI runs).
+    #[arg(long)]
+    quick: bool,
+    /// Directory for speed_error.csv, speed_error.png and speed_error.md.
+    #[arg(long, default_value = ".")]
+    out: PathBuf,
+    /// The `render` binary (default: next to this program).
+    #[arg(long)]
+    render: Option<PathBuf>,
+    /// The gallery scenes' directory (default: the repository's rib/).
+    #[arg(long)]
+    rib_dir: Option<PathBuf>,
+    /// Scratch directory for scenes and renders (default: a new one under the temp dir,
+    /// removed afterwards).
+    #[arg(long)]
+    scratch: Option<PathBuf>,
+    /// Renders per point, the fastest kept (default 1 with --quick, else 2).
+    #[arg(long)]
+    repeat: Option<usize>,
+    /// Threads of every point except the thread-count sweep (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Redraw speed_error.png and speed_error.md from this speed_error.csv, measuring nothing.
+    #[arg(long)]
+    from_csv: Option<PathBuf>,
+}
+
+/// `--from-csv`: the points of a previous run, grouped by scene in file order.
+fn redraw(csv: &Path, out: &Path) -> ExitCode {
+    let points = match std::fs::read_to_string(csv)
+        .map_err(|e| e.to_string())
+        .and_then(|t| bench::csv::from_csv(&t))
+    {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("bench: {}: {e}", csv.display());
+            return ExitCode::from(2);
+        }
+    };
+    let mut results: Vec<(String, Vec<bench::sweep::Point>)> = Vec::new();
+    for p in points {
+        match results.iter_mut().find(|(name, _)| *name == p.scene) {
+            Some((_, v)) => v.push(p),
+            None => results.push((p.scene.clone(), vec![p])),
+        }
+    }
+    for (_, v) in &mut results {
+        bench::sweep::mark_pareto(v);
+    }
+    // The defaults are the settings of the defaults' own point (knob PIXELSAMPLES at 2).
+    let defaults = results
+        .iter()
+        .flat_map(|(_, v)| v.iter())
+        .find(|p| p.knob == Some(bench::knob::Knob::PixelSamples) && p.value == 2.0)
+        .map_or(Settings::defaults(256, 2), |p| p.settings);
+    let heading = format!("Redrawn by `bench --from-csv {}`.", csv.display());
+    match write_outputs(out, &results, &defaults, &heading) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("bench: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn default_render() -> Option<PathBuf> {
+    let exe = std::env::current_exe().ok()?;
+    let p = exe
+        .parent()?
+        .join(format!("render{}", std::env::consts::EXE_SUFFIX));
+    p.exists().then_some(p)
+}
+
+fn scenes(quick: bool, rib_dir: &Path) -> Vec<Scene> {
+    let res = if quick { 48 } else { 224 };
+    let mut v = vec![
+        Scene {
+            name: "matte_sphere".into(),
+            kind: SceneKind::MatteSphere,
+            res,
+        },
+        Scene {
+            name: "disk_shadow".into(),
+            kind: SceneKind::DiskShadow,
+            res,
+        },
+        Scene {
+            name: "mirror_sphere".into(),
+            kind: SceneKind::MirrorSphere,
+            res,
+        },
+    ];
+    let gallery: &[(&str, &str)] = if quick {
+        &[("sphere", "sphere.rib")]
+    } else {
+        &[
+            ("sphere", "sphere.rib"),
+            ("teapot", "teapot.rib"),
+            ("fig9_2_vase", "ch9/fig9_2_vase.rib"),
+            ("fig9_8_ward", "ch9/fig9_8_ward.rib"),
+        ]
+    };
+    let scale = if quick { 0.25 } else { 0.75 };
+    for (name, file) in gallery {
+        let path = rib_dir.join(file);
+        if path.exists() {
+            v.push(Scene {
+                name: (*name).into(),
+                kind: SceneKind::Gallery { path, scale },
+                res,
+            });
+        } else {
+            eprintln!(
+                "bench: warning: {} not found; gallery scene {name} skipped",
+                path.display()
+            );
+        }
+    }
+    v
+}
+
+fn write_outputs(
+    out: &Path,
+    results: &[(String, Vec<bench::sweep::Point>)],
+    defaults: &Settings,
+    heading: &str,
+) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let all: Vec<_> = results
+        .iter()
+        .flat_map(|(_, p)| p.iter().cloned())
+        .collect();
+    let files = [
+        ("speed_error.csv", bench::csv::to_csv(&all).into_bytes()),
+        ("speed_error.png", bench::plot::plot_png(results)?),
+        (
+            "speed_error.md",
+            bench::table::markdown(results, defaults, heading).into_bytes(),
+        ),
+    ];
+    for (name, bytes) in files {
+        let path = out.join(name);
+        write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        eprintln!("bench: wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args = match Args::try_parse() {
+        Ok(a) => a,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    if let Some(csv) = &args.from_csv {
+        return redraw(csv, &args.out);
+    }
+    let Some(render) = args.render.clone().or_else(default_render) else {
+        eprintln!("bench: no render binary next to bench; build it (cargo build --release -p render) or pass --render");
+        return ExitCode::from(2);
+    };
+    // The renders run in per-scene scratch directories: relative paths would not resolve there.
+    let render = match std::fs::canonicalize(&render) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("bench: {}: {e}", render.display());
+            return ExitCode::from(2);
+        }
+    };
+    let rib_dir = args
+        .rib_dir
+        .clone()
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../rib"));
+    let own_scratch = args.scratch.is_none();
+    let scratch = args.scratch.clone().unwrap_or_else(|| {
+        std::env::temp_dir().join(format!("illume-bench-{}", std::process::id()))
+    });
+    let scratch =
+        match std::fs::create_dir_all(&scratch).and_then(|()| std::fs::canonicalize(&scratch)) {
+            Ok(p) => p,
+            Err(e) => {
+                eprintln!("bench: {}: {e}", scratch.display());
+                return ExitCode::from(2);
+            }
+        };
+    let threads = args
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let defaults = Settings::defaults(256, threads);
+    let cfg = SweepConfig {
+        render: &render,
+        scratch: &scratch,
+        quick: args.quick,
+        repeat: args.repeat.unwrap_or(if args.quick { 1 } else { 2 }),
+        defaults,
+    };
+    let start = Instant::now();
+    let mut results = Vec::new();
+    let mut failures = 0;
+    for scene in scenes(args.quick, &rib_dir) {
+        match sweep_scene(&scene, &cfg) {
+            Ok(points) => results.push((scene.name.clone(), points)),
+            Err(e) => {
+                eprintln!("bench: {}: {e}", scene.name);
+                failures += 1;
+            }
+        }
+    }
+    let elapsed = start.elapsed().as_secs_f64();
+    let points: usize = results.iter().map(|(_, p)| p.len()).sum();
+    eprintln!(
+        "bench: {points} points over {} scenes in {elapsed:.1} s",
+        results.len()
+    );
+    if own_scratch {
+        let _ = std::fs::remove_dir_all(&scratch);
+    }
+    if results.is_empty() {
+        eprintln!("bench: nothing measured");
+        return ExitCode::from(2);
+    }
+    let heading = format!(
+        "Measured by `bench{}` in {elapsed:.0} s ({} threads, the smallest wall and CPU time of {} runs per point).",
+        if args.quick { " --quick" } else { "" },
+        threads,
+        cfg.repeat.max(1)
+    );
+    if let Err(e) = write_outputs(&args.out, &results, &defaults, &heading) {
+        eprintln!("bench: {e}");
+        return ExitCode::from(2);
+    }
+    ExitCode::from(u8::from(failures > 0))
+}
