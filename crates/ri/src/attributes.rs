@@ -62,6 +62,8 @@ pub struct Attributes {
     pub detail_range: Option<[f32; 4]>,
     /// `GeometricApproximation "flatness"`.
     pub flatness: Option<f32>,
+    /// `TrimCurve` loops for the NuPatches that follow (RI Spec 3.2 §5.5: an attribute).
+    pub trim_curves: Option<Arc<illume_geom::TrimCurves>>,
 }
 
 impl Default for Attributes {
@@ -89,6 +91,7 @@ impl Default for Attributes {
             detail: None,
             detail_range: None,
             flatness: None,
+            trim_curves: None,
         }
     }
 }
