@@ -147,3 +147,39 @@ fn trim_loop_inside_a_loop_cuts_a_ring_and_ends_with_its_attribute_block() {
     let after = format!("{body}Translate 0 0 1\n{SQUARE}\n");
     assert_area("ring then whole square behind", &after, 9.0, 1e-3);
 }
+
+/// A flat 4×4-vertex (3×3-face) subdivision sheet over [-1.5, 1.5]², evenly spaced.
+fn sheet(tags: &str) -> String {
+    let mut p = Vec::new();
+    for j in 0..4 {
+        for i in 0..4 {
+            p.extend([i as f64 - 1.5, j as f64 - 1.5, 0.0]);
+        }
+    }
+    let mut verts = Vec::new();
+    for j in 0..3 {
+        for i in 0..3 {
+            let k = j * 4 + i;
+            verts.extend([k, k + 1, k + 5, k + 4].map(|x| x.to_string()));
+        }
+    }
+    format!(
+        "SubdivisionMesh \"catmull-clark\" [4 4 4 4 4 4 4 4 4] [{}] {tags} \"P\" [{}]",
+        verts.join(" "),
+        list(p)
+    )
+}
+
+#[test]
+fn flat_subdivision_sheet_covers_its_exact_areas() {
+    // interpolateboundary: the boundary is the B-spline of the (straight, evenly spaced)
+    // boundary polygon with its corners interpolated, i.e. the square itself: area 9.
+    let ib = "[\"interpolateboundary\"] [0 0] [] []";
+    assert_area("interpolateboundary", &sheet(ib), 9.0, 1e-3);
+    // Without it only the inner face renders; the uniform B-spline of evenly spaced points is
+    // linear, so that face's limit patch is exactly the square [-0.5, 0.5]²: area 1.
+    assert_area("no interpolateboundary", &sheet(""), 1.0, 2e-3);
+    // A hole in the middle face leaves 8.
+    let holed = "[\"interpolateboundary\" \"hole\"] [0 0 1 0] [4] []";
+    assert_area("hole", &sheet(holed), 8.0, 1e-3);
+}

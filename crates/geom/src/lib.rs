@@ -40,6 +40,7 @@ pub mod patch;
 pub mod polygon;
 pub mod primvar;
 pub mod quadric;
+pub mod subdivision;
 pub mod teapot;
 pub mod trimcurve;
 
@@ -106,7 +107,7 @@ pub enum GeomError {
 /// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
 /// Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons (convex or not, with
 /// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), NuPatch (trimmed by
-/// `ctx.trim_curves`), `Geometry "teapot"`.
+/// `ctx.trim_curves`), SubdivisionMesh "catmull-clark", `Geometry "teapot"`.
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -181,6 +182,28 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
                 vknot,
                 vmin: *vmin,
                 vmax: *vmax,
+            },
+            params,
+            ctx,
+        ),
+        Request::SubdivisionMesh {
+            scheme,
+            nvertices,
+            vertices,
+            tags,
+            nargs,
+            intargs,
+            floatargs,
+            params,
+        } => subdivision::build_subdivision(
+            subdivision::SubdivisionArgs {
+                scheme,
+                nvertices,
+                vertices,
+                tags,
+                nargs,
+                intargs,
+                floatargs,
             },
             params,
             ctx,

@@ -15,7 +15,9 @@
 use crate::knots::KnotVector;
 use crate::parametric::{default_st, with_default_st, Field, FieldRef, Interp, Parametric};
 use crate::parametric::{Surface, SurfaceVar};
-use crate::primvar::{element64, is_position, resolve, ClassCounts, PrimVar, PrimVarData};
+use crate::primvar::{
+    camera_values, element64, is_position, resolve, ClassCounts, PrimVar, PrimVarData,
+};
 use crate::trimcurve::TrimCurves;
 use crate::{Bound, BuildContext, GeomError, Primitive};
 use glam::{DMat4, DVec3, DVec4};
@@ -407,20 +409,4 @@ fn uniform_var(var: &PrimVar, segment: usize, m: &DMat4) -> Option<SurfaceVar> {
     };
     sv.to_camera(m);
     Some(sv)
-}
-
-/// All values of `var` in camera space (points, vectors and normals by their type).
-fn camera_values(var: &PrimVar, m: &DMat4) -> Vec<f64> {
-    let mut sv = SurfaceVar {
-        name: String::new(),
-        ty: var.ty,
-        components: var.element_size(),
-        interp: Interp::Constant(var.floats().iter().map(|&x| f64::from(x)).collect()),
-    };
-    sv.to_camera(m);
-    // `to_camera` keeps the interpolation kind.
-    match sv.interp {
-        Interp::Constant(v) => v,
-        _ => Vec::new(),
-    }
 }
