@@ -37,6 +37,7 @@ pub mod knots;
 pub mod nupatch;
 pub mod parametric;
 pub mod patch;
+pub mod points;
 pub mod polygon;
 pub mod primvar;
 pub mod quadric;
@@ -107,7 +108,7 @@ pub enum GeomError {
 /// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
 /// Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons (convex or not, with
 /// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), NuPatch (trimmed by
-/// `ctx.trim_curves`), SubdivisionMesh "catmull-clark", `Geometry "teapot"`.
+/// `ctx.trim_curves`), SubdivisionMesh "catmull-clark", Points, `Geometry "teapot"`.
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -208,6 +209,7 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
             params,
             ctx,
         ),
+        Request::Points { params } => points::build_points(params, ctx),
         Request::Geometry { kind, params } if kind == "teapot" => teapot::build_teapot(params, ctx),
         Request::Geometry { kind, .. } => {
             Err(GeomError::Unsupported(format!("Geometry \"{kind}\"")))

@@ -102,6 +102,8 @@ fn predeclared(name: &str) -> Option<Declaration> {
         "Cs" | "Os" => (Class::Varying, Type::Color, 1),
         "s" | "t" => (Class::Varying, Type::Float, 1),
         "st" => (Class::Varying, Type::Float, 2),
+        "width" => (Class::Varying, Type::Float, 1),
+        "constantwidth" => (Class::Constant, Type::Float, 1),
         _ => return None,
     };
     Some(Declaration {
