@@ -211,3 +211,49 @@ fn points_cover_n_disks_of_their_width() {
     );
     assert_area("scaled points", &body, 9.0 * disk(1.0), 2e-3);
 }
+
+#[test]
+fn linear_curve_of_width_w_and_length_l_covers_l_w() {
+    // l = 3, w = 0.5, camera-facing.
+    let line = "Curves \"linear\" [2] \"nonperiodic\" \"P\" [-1.5 0 0  1.5 0 0]";
+    assert_area(
+        "linear curve",
+        &format!("{line} \"constantwidth\" [0.5]"),
+        1.5,
+        2e-3,
+    );
+    // Varying width 0.2 → 0.6: a trapezoid, l·(w0 + w1)/2.
+    assert_area(
+        "tapered curve",
+        &format!("{line} \"width\" [0.2 0.6]"),
+        1.2,
+        2e-3,
+    );
+    // A polyline of three segments with two 90° bends: each segment's rectangle ends at its
+    // vertices, so at a bend the two overlap in a (w/2)² square inside (and leave a (w/2)²
+    // notch outside, covered by neither): Σ lᵢ·w − 2·(w/2)² = (2 + 3 + 2)·0.2 − 2·0.01.
+    let zig =
+        "Curves \"linear\" [4] \"nonperiodic\" \"P\" [-1.5 -1 0  -1.5 1 0  1.5 1 0  1.5 -1 0] \
+               \"constantwidth\" [0.2]";
+    assert_area("zig-zag polyline", zig, 1.4 - 2.0 * 0.01, 3e-3);
+}
+
+#[test]
+fn cubic_curves_follow_the_basis_and_n_orients_the_ribbon() {
+    // A Bézier curve with evenly spaced collinear control points is the straight segment
+    // [-1.5, 1.5] (length 3), parametrised linearly.
+    let bez = "Curves \"cubic\" [4] \"nonperiodic\" \"P\" [-1.5 0 0  -0.5 0 0  0.5 0 0  1.5 0 0] \
+               \"constantwidth\" [0.4]";
+    assert_area("bezier curve", bez, 1.2, 2e-3);
+    // A uniform B-spline over 6 evenly spaced points covers from the second to the fifth
+    // point's neighbourhood: (x0 + 4x1 + x2)/6 = x1 to x4 for evenly spaced points: length 3.
+    let pts = list((0..6).flat_map(|i| [f64::from(i) - 2.5, 0.0, 0.0]));
+    let bspline =
+        format!("Basis \"b-spline\" 1 \"b-spline\" 1\nCurves \"cubic\" [6] \"nonperiodic\" \"P\" [{pts}] \"constantwidth\" [0.4]");
+    assert_area("b-spline curve", &bspline, 1.2, 2e-3);
+    // N toward the camera: the same ribbon. N along y: the ribbon is seen edge on.
+    let facing = format!("{bez} \"N\" [0 0 -1  0 0 -1]");
+    assert_area("ribbon facing the camera", &facing, 1.2, 2e-3);
+    let edge_on = covered_area(&format!("{bez} \"N\" [0 1 0  0 1 0]"));
+    assert!(edge_on < 0.01 * 1.2, "edge-on ribbon covers {edge_on}");
+}

@@ -31,6 +31,7 @@
 
 pub mod basis;
 pub mod bound;
+pub mod curves;
 pub mod ear_clipping;
 pub mod grid;
 pub mod knots;
@@ -108,7 +109,8 @@ pub enum GeomError {
 /// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
 /// Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons (convex or not, with
 /// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), NuPatch (trimmed by
-/// `ctx.trim_curves`), SubdivisionMesh "catmull-clark", Points, `Geometry "teapot"`.
+/// `ctx.trim_curves`), SubdivisionMesh "catmull-clark", Points, Curves (linear, cubic with the
+/// v basis), `Geometry "teapot"`.
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -210,6 +212,12 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
             ctx,
         ),
         Request::Points { params } => points::build_points(params, ctx),
+        Request::Curves {
+            kind,
+            nvertices,
+            wrap,
+            params,
+        } => curves::build_curves(kind, nvertices, wrap, params, ctx),
         Request::Geometry { kind, params } if kind == "teapot" => teapot::build_teapot(params, ctx),
         Request::Geometry { kind, .. } => {
             Err(GeomError::Unsupported(format!("Geometry \"{kind}\"")))
