@@ -34,6 +34,7 @@ fn main() {
         declarations: &no_decls,
         basis: (bezier, 3, bezier, 3),
         texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        trim_curves: None,
     };
     let sphere = Request::Sphere {
         radius: 1.0,

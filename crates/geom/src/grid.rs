@@ -40,6 +40,9 @@ pub struct Grid {
     pub os: Option<Vec<Vec3>>,
     /// Any other primitive variables, for shader parameters of the same name.
     pub vars: Vec<GridVar>,
+    /// Per micropolygon (`(nu-1)·(nv-1)`, u fastest): `true` where the surface is cut away
+    /// (trim curves). Empty when nothing is hidden.
+    pub hidden: Vec<bool>,
 }
 
 impl Grid {

@@ -31,23 +31,31 @@
 
 pub mod basis;
 pub mod bound;
+pub mod curves;
 pub mod ear_clipping;
 pub mod grid;
+pub mod knots;
+pub mod nupatch;
 pub mod parametric;
 pub mod patch;
+pub mod points;
 pub mod polygon;
 pub mod primvar;
 pub mod quadric;
+pub mod subdivision;
 pub mod teapot;
+pub mod trimcurve;
 
 pub use basis::basis_matrix;
 pub use bound::Bound;
 pub use grid::{Grid, GridVar};
 pub use parametric::{Parametric, Surface};
 pub use primvar::{ClassCounts, PrimVar, PrimVarData};
+pub use trimcurve::{TrimCurveArgs, TrimCurves};
 
 use glam::DMat4;
 use illume_rib::{Declaration, Request};
+use std::sync::Arc;
 use thiserror::Error;
 
 /// A piece of geometry the hider can bound, split and dice.
@@ -81,6 +89,8 @@ pub struct BuildContext<'a> {
     pub basis: ([f32; 16], i32, [f32; 16], i32),
     /// Current `TextureCoordinates` s1 t1 s2 t2 s3 t3 s4 t4 (default 0 0 1 0 0 1 1 1).
     pub texture_coordinates: [f32; 8],
+    /// Current `TrimCurve` loops (an attribute), applied to `NuPatch`.
+    pub trim_curves: Option<Arc<TrimCurves>>,
 }
 
 #[derive(Clone, Debug, PartialEq, Error)]
@@ -98,7 +108,9 @@ pub enum GeomError {
 ///
 /// Built: the quadrics (Sphere, Cone, Cylinder, Hyperboloid, Paraboloid, Disk, Torus),
 /// Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons (convex or not, with
-/// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), `Geometry "teapot"`.
+/// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), NuPatch (trimmed by
+/// `ctx.trim_curves`), SubdivisionMesh "catmull-clark", Points, Curves (linear, cubic with the
+/// v basis), `Geometry "teapot"`.
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -149,6 +161,63 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
             };
             patch::build_mesh(request.name(), shape, &ctx.basis, params, ctx)
         }
+        Request::NuPatch {
+            nu,
+            uorder,
+            uknot,
+            umin,
+            umax,
+            nv,
+            vorder,
+            vknot,
+            vmin,
+            vmax,
+            params,
+        } => nupatch::build_nupatch(
+            nupatch::NuPatchArgs {
+                nu: *nu,
+                uorder: *uorder,
+                uknot,
+                umin: *umin,
+                umax: *umax,
+                nv: *nv,
+                vorder: *vorder,
+                vknot,
+                vmin: *vmin,
+                vmax: *vmax,
+            },
+            params,
+            ctx,
+        ),
+        Request::SubdivisionMesh {
+            scheme,
+            nvertices,
+            vertices,
+            tags,
+            nargs,
+            intargs,
+            floatargs,
+            params,
+        } => subdivision::build_subdivision(
+            subdivision::SubdivisionArgs {
+                scheme,
+                nvertices,
+                vertices,
+                tags,
+                nargs,
+                intargs,
+                floatargs,
+            },
+            params,
+            ctx,
+        ),
+        Request::Points { params } => points::build_points(params, ctx),
+        Request::Curves {
+            kind,
+            nvertices,
+            wrap,
+            params,
+        } => curves::build_curves(kind, nvertices, wrap, params, ctx),
         Request::Geometry { kind, params } if kind == "teapot" => teapot::build_teapot(params, ctx),
         Request::Geometry { kind, .. } => {
             Err(GeomError::Unsupported(format!("Geometry \"{kind}\"")))

@@ -18,6 +18,33 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     fn eval(&self, u: f64, v: f64) -> [DVec3; 3];
     /// A conservative camera-space bound of the sub-range `[u0,u1] × [v0,v1]`.
     fn bound(&self, u: [f64; 2], v: [f64; 2]) -> Bound;
+    /// Whether the point `(u, v)` is cut away (a `TrimCurve` region of a NuPatch). Surfaces
+    /// without trimming keep everything.
+    fn trimmed(&self, _u: f64, _v: f64) -> bool {
+        false
+    }
+    /// Whether [`Surface::trimmed`] can ever say `true` (saves the per-micropolygon test).
+    fn has_trim(&self) -> bool {
+        false
+    }
+}
+
+/// A primitive variable whose interpolation is not one of the closed forms of [`Interp`]
+/// (NURBS bases, piecewise-bilinear varying values over knot spans). Values are already in
+/// camera space when the field is built.
+pub trait Field: Send + Sync + std::fmt::Debug {
+    /// Writes the value at surface parameters `(u, v)` into `out` (`components` scalars).
+    fn eval_into(&self, u: f64, v: f64, out: &mut [f64]);
+}
+
+/// A shared [`Field`], compared by identity (two fields are equal when they are the same one).
+#[derive(Clone, Debug)]
+pub struct FieldRef(pub Arc<dyn Field>);
+
+impl PartialEq for FieldRef {
+    fn eq(&self, other: &FieldRef) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
 }
 
 /// How a primitive variable varies over one surface.
@@ -31,6 +58,8 @@ pub enum Interp {
     /// Vertex values on a bicubic patch in power form: per component, `c[4·i + j]`
     /// multiplies `u^(3-i) · v^(3-j)` (so `c[15]` is the constant term).
     Bicubic(Vec<[f64; 16]>),
+    /// Any other interpolation, already in camera space ([`SurfaceVar::to_camera`] leaves it).
+    Field(FieldRef),
 }
 
 /// One primitive variable of a surface (everything but the position).
@@ -60,6 +89,7 @@ impl Interp {
                     *o = power_eval(c, &uu, &vv);
                 }
             }
+            Interp::Field(f) => f.0.eval_into(u, v, out),
         }
     }
 
@@ -87,6 +117,7 @@ impl Interp {
                     }
                 }
             }
+            Interp::Field(_) => {}
         }
     }
 }
@@ -296,7 +327,23 @@ fn dice(piece: &Parametric, nu: usize, nv: usize) -> Grid {
     }
     g.n = g.ng.clone();
     fill_vars(&mut g, &piece.vars, &us, &vs);
+    if piece.surface.has_trim() {
+        g.hidden = trim_mask(&*piece.surface, &us, &vs);
+    }
     g
+}
+
+/// Per micropolygon: whether its parametric centre is trimmed away. A centre test keeps the
+/// expected covered area unbiased (micropolygons straddling the curve are kept or dropped
+/// about half the time each), at an edge error below one micropolygon.
+fn trim_mask(s: &dyn Surface, us: &[f64], vs: &[f64]) -> Vec<bool> {
+    let mut mask = Vec::with_capacity((us.len() - 1) * (vs.len() - 1));
+    for v in vs.windows(2) {
+        for u in us.windows(2) {
+            mask.push(s.trimmed(0.5 * (u[0] + u[1]), 0.5 * (v[0] + v[1])));
+        }
+    }
+    mask
 }
 
 /// `normalize(dPdu × dPdv)`; where that vanishes (a pole, the collapsed edge of a triangle)

@@ -102,6 +102,8 @@ fn predeclared(name: &str) -> Option<Declaration> {
         "Cs" | "Os" => (Class::Varying, Type::Color, 1),
         "s" | "t" => (Class::Varying, Type::Float, 1),
         "st" => (Class::Varying, Type::Float, 2),
+        "width" => (Class::Varying, Type::Float, 1),
+        "constantwidth" => (Class::Constant, Type::Float, 1),
         _ => return None,
     };
     Some(Declaration {
@@ -222,6 +224,23 @@ pub(crate) fn surface_vars(
             sv
         })
         .collect()
+}
+
+/// All values of `var` widened to f64 and moved to camera space (points, vectors and normals
+/// by their type), for primitives that interpolate them themselves.
+pub(crate) fn camera_values(var: &PrimVar, m: &glam::DMat4) -> Vec<f64> {
+    let mut sv = SurfaceVar {
+        name: String::new(),
+        ty: var.ty,
+        components: var.element_size(),
+        interp: Interp::Constant(var.floats().iter().map(|&x| f64::from(x)).collect()),
+    };
+    sv.to_camera(m);
+    // `to_camera` keeps the interpolation kind.
+    match sv.interp {
+        Interp::Constant(v) => v,
+        _ => Vec::new(),
+    }
 }
 
 /// Value `i` of `var` widened to f64.

@@ -82,6 +82,7 @@ fn corpus_geometry_builds_and_dices_inside_its_bounds() {
                 declarations: &lookup,
                 basis: bases,
                 texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                trim_curves: None,
             };
             match build(req, &ctx) {
                 Ok(list) => {

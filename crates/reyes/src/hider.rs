@@ -364,7 +364,12 @@ fn dice_and_shade(
         })
         .collect();
     let (nu, nv) = (grid.nu, grid.nv);
-    let mut backface = vec![false; (nu - 1) * (nv - 1)];
+    // Trimmed-away micropolygons are skipped exactly like back faces.
+    let mut backface = if grid.hidden.len() == (nu - 1) * (nv - 1) {
+        grid.hidden.clone()
+    } else {
+        vec![false; (nu - 1) * (nv - 1)]
+    };
     if a.sides == 1 {
         for j in 0..nv - 1 {
             for i in 0..nu - 1 {
@@ -374,7 +379,7 @@ fn dice_and_shade(
                 } else {
                     Vec3::Z
                 };
-                backface[j * (nu - 1) + i] = (grid.ng[k] * flip).dot(view) > 0.0;
+                backface[j * (nu - 1) + i] |= (grid.ng[k] * flip).dot(view) > 0.0;
             }
         }
     }

@@ -77,6 +77,8 @@ pub struct Attributes {
     /// (all as fully opaque here), "transparent" and "none" do not; PRMan's integer form
     /// (`"int transmission" [0]`) too.
     pub casts_shadows: bool,
+    /// `TrimCurve` loops for the NuPatches that follow (RI Spec 3.2 §5.5: an attribute).
+    pub trim_curves: Option<Arc<illume_geom::TrimCurves>>,
 }
 
 impl Default for Attributes {
@@ -107,6 +109,7 @@ impl Default for Attributes {
             light_shadows: false,
             light_samples: 16,
             casts_shadows: true,
+            trim_curves: None,
         }
     }
 }

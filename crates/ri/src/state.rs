@@ -879,6 +879,33 @@ impl Ri {
                 let a = self.attrs();
                 a.orientation_rh = !a.orientation_rh;
             }
+            TrimCurve {
+                ncurves,
+                order,
+                knot,
+                min,
+                max,
+                n,
+                u,
+                v,
+                w,
+            } => {
+                let args = illume_geom::TrimCurveArgs {
+                    ncurves: &ncurves,
+                    order: &order,
+                    knot: &knot,
+                    min: &min,
+                    max: &max,
+                    n: &n,
+                    u: &u,
+                    v: &v,
+                    w: &w,
+                };
+                match illume_geom::TrimCurves::new(args) {
+                    Ok(t) => self.attrs().trim_curves = (!t.is_empty()).then(|| Arc::new(t)),
+                    Err(e) => self.diagnostics.error(span, &name, e),
+                }
+            }
             Basis {
                 ubasis,
                 ustep,
@@ -1143,6 +1170,7 @@ impl Ri {
             declarations: &lookup,
             basis: a.basis,
             texture_coordinates: a.texture_coordinates,
+            trim_curves: a.trim_curves.clone(),
         };
         match illume_geom::build(req, &ctx) {
             Ok(prims) => {
@@ -1479,7 +1507,6 @@ fn is_geometry(r: &Request) -> bool {
             | Patch { .. }
             | PatchMesh { .. }
             | NuPatch { .. }
-            | TrimCurve { .. }
             | Sphere { .. }
             | Cone { .. }
             | Cylinder { .. }
