@@ -334,7 +334,7 @@ fn homogeneous_points(vars: &[PrimVar], m: &DMat4) -> Result<Vec<DVec4>, String>
     } else {
         return Err("needs \"P\" or \"Pw\"".to_string());
     };
-    if let Some(k) = pw.iter().position(|p| !p.is_finite() || !(p.w > 0.0)) {
+    if let Some(k) = pw.iter().position(|p| !p.is_finite() || p.w <= 0.0) {
         return Err(format!(
             "control point {k} must be finite with a positive weight, found {}",
             pw[k]
