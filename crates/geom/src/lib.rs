@@ -17,7 +17,8 @@
 //! # What `build` returns
 //! Every request builds a list of [`Parametric`] pieces (all diceable): one per quadric, one
 //! per subpatch of a mesh (32 for the teapot), one per convex quad or ear-clipped triangle of a
-//! polygon. Their `(u, v)` run over `[0,1]²` of the piece's own surface; [`Grid::du`]/`dv` are
+//! polygon, one per non-empty knot rectangle of a NuPatch (all sharing one surface), one per
+//! limit-mesh quad of a subdivision mesh, one disk per point, one ribbon per curve segment. Their `(u, v)` run over `[0,1]²` of the piece's own surface; [`Grid::du`]/`dv` are
 //! the steps in those units. Orientation of the raw `dPdu × dPdv`: outward for a quadric with
 //! positive `thetamax` (inward when it is negative, as the u sweep reverses); along the
 //! right-hand rule of the vertex order for polygons and of (u, v) for patches.

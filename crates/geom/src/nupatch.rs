@@ -111,6 +111,10 @@ pub struct NurbsSurface {
     v: Axis,
     pw: Vec<DVec4>,
     trim: Option<Arc<TrimCurves>>,
+    /// Derivatives shorter than this are rounding noise of a collapsed edge (a pole whose
+    /// control points coincide with different weights) and are zeroed, so the normal falls
+    /// back to the limit normal instead of taking the noise's direction.
+    tiny: f64,
 }
 
 /// The basis functions of both directions at one point, and where they start.
@@ -163,7 +167,14 @@ impl Surface for NurbsSurface {
         // Quotient rule for (xyz/w)', then the chain rule into the surface's [0,1] units.
         let pu = (au.truncate() - p * au.w) / a.w * self.u.scale();
         let pv = (av.truncate() - p * av.w) / a.w * self.v.scale();
-        [p, pu, pv]
+        let clean = |d: DVec3| {
+            if d.length() < self.tiny {
+                DVec3::ZERO
+            } else {
+                d
+            }
+        };
+        [p, clean(pu), clean(pv)]
     }
 
     /// Convex hull property: with positive weights the sub-range lies in the hull of the
@@ -293,7 +304,20 @@ pub fn build_nupatch(
     let vars = resolve("NuPatch", params, ctx.declarations, &counts)?;
     let pw = homogeneous_points(&vars, &ctx.camera_from_object).map_err(invalid)?;
     let trim = ctx.trim_curves.clone().filter(|t| !t.is_empty());
-    let surface = Arc::new(NurbsSurface { u, v, pw, trim });
+    // The control net's extent sets the noise floor of the derivatives (f64 rounding of
+    // coordinates of that size, with a wide margin).
+    let extent = pw
+        .iter()
+        .map(|c| (c.truncate() / c.w).abs().max_element())
+        .fold(0.0, f64::max);
+    let tiny = extent * 1e-9;
+    let surface = Arc::new(NurbsSurface {
+        u,
+        v,
+        pw,
+        trim,
+        tiny,
+    });
     let shared = shared_vars(&vars, &surface, ctx, (segs_u, segs_v));
     let st = default_st(
         &ctx.texture_coordinates,
@@ -334,7 +358,7 @@ fn homogeneous_points(vars: &[PrimVar], m: &DMat4) -> Result<Vec<DVec4>, String>
     } else {
         return Err("needs \"P\" or \"Pw\"".to_string());
     };
-    if let Some(k) = pw.iter().position(|p| !p.is_finite() || !(p.w > 0.0)) {
+    if let Some(k) = pw.iter().position(|p| !p.is_finite() || p.w <= 0.0) {
         return Err(format!(
             "control point {k} must be finite with a positive weight, found {}",
             pw[k]

@@ -202,7 +202,7 @@ impl Mesh {
         let mut rows = self.rows.clone();
         let mut varying = self.varying.clone();
         // Moved original vertices.
-        for v in 0..nv {
+        for (v, moved) in rows.iter_mut().enumerate().take(nv) {
             let n = t.vertex_edges[v].len();
             if n == 0 {
                 continue;
@@ -219,7 +219,7 @@ impl Mesh {
                     .map(|k| (q[k] + 2.0 * r[k] + (nf - 3.0) * self.rows[v][k]) / nf)
                     .collect::<Vec<f64>>()
             };
-            rows[v] = match self.vertex_rule(&t, v) {
+            *moved = match self.vertex_rule(&t, v) {
                 VertexRule::Smooth => smooth(),
                 VertexRule::Crease([a, b], s) => {
                     let sharp: Vec<f64> = (0..d)

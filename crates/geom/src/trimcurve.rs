@@ -92,7 +92,7 @@ impl TrimCurves {
                     .collect();
                 if ctrl
                     .iter()
-                    .any(|c| !(c[2] > 0.0) || !c[0].is_finite() || !c[1].is_finite())
+                    .any(|c| !c.iter().all(|x| x.is_finite()) || c[2] <= 0.0)
                 {
                     return Err(format!(
                         "curve {curve}: control points need finite u, v and w > 0"
@@ -159,7 +159,7 @@ impl TrimCurves {
 fn polyline(kv: &KnotVector, ctrl: &[[f64; 3]], range: [f64; 2], out: &mut Vec<DVec2>) {
     let [d0, d1] = kv.domain();
     let (t0, t1) = (range[0].max(d0), range[1].min(d1));
-    if !(t1 > t0) {
+    if t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater) {
         return;
     }
     let order = kv.order();
