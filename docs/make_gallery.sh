@@ -13,8 +13,9 @@ gallery="$root/docs/gallery"
 mkdir -p "$gallery"
 
 echo "make_gallery: building render and to_png (release)"
-cargo build --release --quiet -p render -p illume-imageio --example to_png \
-  --manifest-path "$root/Cargo.toml"
+# Two builds: with --example, cargo would build only that target of every named package.
+cargo build --release --quiet -p render --manifest-path "$root/Cargo.toml"
+cargo build --release --quiet -p illume-imageio --example to_png --manifest-path "$root/Cargo.toml"
 target_dir="$(cargo metadata --format-version 1 --no-deps --manifest-path "$root/Cargo.toml" \
   | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')"
 to_png="$target_dir/release/examples/to_png"
