@@ -1,25 +1,27 @@
 #!/usr/bin/env bash
-# Regenerates the README gallery: renders every scene in rib/ch9/ with a release build of
-# `render` and converts each image it writes to a small PNG in docs/gallery/.
+# Regenerates the README gallery: renders every scene in rib/ch9/ and the single-RIB form of
+# every pipeline in rib/pipelines/ with a release build of `render`, and converts the images
+# they write to small 8-bit PNGs in docs/gallery/ (with the `to_png` example of illume-imageio,
+# so no outside image tool is needed).
 #
 # Usage (from anywhere inside the repository):  docs/make_gallery.sh
-# Needs: cargo, and oiiotool (OpenImageIO) to convert TIFF to PNG.
-# RENDER=/path/to/render uses that binary instead of building one.
+# Needs: cargo. RENDER=/path/to/render uses that binary instead of building one.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 gallery="$root/docs/gallery"
 mkdir -p "$gallery"
 
-command -v oiiotool >/dev/null || { echo "make_gallery: oiiotool (OpenImageIO) is needed to write PNGs" >&2; exit 1; }
-
+echo "make_gallery: building render and to_png (release)"
+# Two builds: with --example, cargo would build only that target of every named package.
+cargo build --release --quiet -p render --manifest-path "$root/Cargo.toml"
+cargo build --release --quiet -p illume-imageio --example to_png --manifest-path "$root/Cargo.toml"
+target_dir="$(cargo metadata --format-version 1 --no-deps --manifest-path "$root/Cargo.toml" \
+  | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')"
+to_png="$target_dir/release/examples/to_png"
 if [ -n "${RENDER:-}" ]; then
   render="$(realpath "$RENDER")"   # absolute: each scene renders in its own directory
 else
-  echo "make_gallery: building render (release)"
-  cargo build --release --quiet -p render --manifest-path "$root/Cargo.toml"
-  target_dir="$(cargo metadata --format-version 1 --no-deps --manifest-path "$root/Cargo.toml" \
-    | sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')"
   render="$target_dir/release/render"
 fi
 
@@ -28,19 +30,34 @@ trap 'rm -rf "$work"' EXIT
 
 made=()
 failed=()
+
+# render_in DIR RIB NAME: renders RIB with DIR as the working directory; prints the seconds.
+render_in() {
+  local dir="$1" rib="$2" name="$3" start
+  start=$(date +%s.%N)
+  if ! (cd "$dir" && "$render" -q "$rib"); then
+    echo "make_gallery: render failed on $rib" >&2
+    failed+=("$name")
+    return 1
+  fi
+  secs=$(echo "$(date +%s.%N) - $start" | bc)
+}
+
+# convert TIF PNG_NAME SOURCE: one gallery PNG.
+convert() {
+  local png="$gallery/$2"
+  "$to_png" "$1" "$png"
+  made+=("$(printf '%-44s %6d bytes  (%s, %.1f s)' "${png#"$root"/}" "$(stat -c %s "$png")" "$3" "$secs")")
+}
+
+# Chapter 9 figures: every TIFF each scene writes.
 for rib in "$root"/rib/ch9/*.rib; do
   name="$(basename "$rib" .rib)"
   # Each scene writes its TIFF(s) relative to the current directory; render in its own dir so
   # we know which files came from which scene.
   dir="$work/$name"
   mkdir -p "$dir"
-  start=$(date +%s.%N)
-  if ! (cd "$dir" && "$render" -q "$rib"); then
-    echo "make_gallery: render failed on $rib" >&2
-    failed+=("$name")
-    continue
-  fi
-  secs=$(echo "$(date +%s.%N) - $start" | bc)
+  render_in "$dir" "$rib" "$name" || continue
   shopt -s nullglob
   tifs=("$dir"/*.tif "$dir"/*.tiff)
   shopt -u nullglob
@@ -50,12 +67,42 @@ for rib in "$root"/rib/ch9/*.rib; do
     continue
   fi
   for tif in "${tifs[@]}"; do
-    png="$gallery/$(basename "${tif%.*}").png"
-    # Drop alpha (the gallery shows the images over the page, not composited) and write 8 bits.
-    # No metadata (render time stamps, software name), so regenerating unchanged images gives
-    # byte-identical PNGs and no spurious diffs.
-    oiiotool --nosoftwareattrib "$tif" --ch R,G,B -d uint8 --eraseattrib ".*" -o "$png"
-    made+=("$(printf '%-40s %6d bytes  (%s, %.1f s)' "${png#"$root"/}" "$(stat -c %s "$png")" "$name.rib" "$secs")")
+    convert "$tif" "$(basename "${tif%.*}").png" "$name.rib"
+  done
+done
+
+# Pipelines: each runs in a copy of its directory (they read inputs such as sky.exr from the
+# working directory); the images shown, as pipeline:file.tif:gallery-name.png.
+pipeline_images=(
+  shadow:shadow_single.tif:pipeline_shadow.png
+  envcube:px.tif:pipeline_envcube_px.png
+  envcube:nx.tif:pipeline_envcube_nx.png
+  envcube:py.tif:pipeline_envcube_py.png
+  envcube:ny.tif:pipeline_envcube_ny.png
+  envcube:pz.tif:pipeline_envcube_pz.png
+  envcube:nz.tif:pipeline_envcube_nz.png
+  envcube:envcube_single.tif:pipeline_envcube.png
+  envcube:fig9_6_envcube_single.tif:fig9_6_shiny_envmap.png
+  flatmirror:refl.tif:pipeline_flatmirror_mirrored.png
+  flatmirror:flatmirror_single.tif:pipeline_flatmirror.png
+  latlong:sky.exr:pipeline_latlong_sky.png
+  latlong:latlong_single.tif:pipeline_latlong.png
+)
+for p in "$root"/rib/pipelines/*/; do
+  name="$(basename "$p")"
+  dir="$work/pipeline-$name"
+  mkdir -p "$dir"
+  cp "$p"* "$dir"/
+  render_in "$dir" "${name}_single.rib" "$name" || continue
+  for entry in "${pipeline_images[@]}"; do
+    IFS=: read -r pipeline tif png <<<"$entry"
+    [ "$pipeline" = "$name" ] || continue
+    if [ -f "$dir/$tif" ]; then
+      convert "$dir/$tif" "$png" "rib/pipelines/$name/${name}_single.rib"
+    else
+      echo "make_gallery: $name wrote no $tif" >&2
+      failed+=("$name:$tif")
+    fi
   done
 done
 

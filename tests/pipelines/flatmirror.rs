@@ -162,8 +162,8 @@ fn flatmirror_sh_and_render_single_rib_write_identical_files() {
     let [single, script] = &images[0];
     assert_eq!((single.width, single.height), (256, 256));
     assert_same_image(
-        &single,
-        &script,
+        single,
+        script,
         "flatmirror_single.tif vs flatmirror_script.tif",
     );
 }
