@@ -10,9 +10,11 @@ mod hider;
 mod refine;
 pub mod sampling;
 mod shading;
+mod tile;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};
 pub use filter::PixelFilter;
+pub use tile::{read_tile, write_tile, Tile};
 
 use illume_ri::{Diagnostic, Frame};
 
