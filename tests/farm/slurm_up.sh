@@ -59,6 +59,8 @@ ReturnToService=2
 JobRequeue=1
 MinJobAge=600
 MaxArraySize=1001
+# Look at pending jobs every 2 s (default 60 s): requeued test tasks restart promptly.
+SchedulerParameters=sched_interval=2
 SlurmctldTimeout=30
 SlurmdTimeout=30
 NodeName=localhost NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
