@@ -72,6 +72,7 @@ t1=$(date +%s.%N)
 same_as_plain
 echo "farm ci: 3 frames x 16 tiles merged bit-identical to render ($(awk -v a="$t0" -v b="$t1" 'BEGIN{printf "%.1f", b-a}') s submit to done)"
 grep -q "test hook ILLUME_FARM_KILL_TASK: killing" job/logs/tiles_*_5.out
+grep -q "farm: exit 137 on attempt 1" job/logs/tiles_*_5.out
 grep -q "tiles task 5 attempt 2 " job/logs/tiles_*_5.out
 grep -q "tiles task 5 done " job/logs/tiles_*_5.out
 echo "farm ci: the killed tile was requeued and retried"

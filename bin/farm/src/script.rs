@@ -105,7 +105,8 @@ farm_run() {
   "$@" &
   local pid=$!
   if [ "${ILLUME_FARM_KILL_TASK:-}" = "$FARM_STAGE:$i" ] && [ "$attempt" = 1 ]; then
-    sleep "${ILLUME_FARM_KILL_AFTER:-0.05}"
+    # No sleep by default: a tiny test render could finish before it ends.
+    [ -n "${ILLUME_FARM_KILL_AFTER:-}" ] && sleep "$ILLUME_FARM_KILL_AFTER"
     echo "farm: test hook ILLUME_FARM_KILL_TASK: killing pid $pid mid-run"
     kill -9 "$pid" 2>/dev/null
   fi
@@ -210,6 +211,7 @@ pub fn tiles_script(ctx: &ScriptContext, plan: &Plan) -> String {
     s.push_str(
         "farm_run \"$RENDER\" -q --threads \"$THREADS\" --no-make $frames --crop $crop --tile-out \"$out\" \"$SCENE\"\n",
     );
+    s.push_str("[ -e \"$out\" ] || { echo \"farm: render wrote no tile $out\"; exit 2; }\n");
     s.push_str("farm_done\n");
     s
 }

@@ -37,6 +37,9 @@ impl Submission {
         }
         if !after_ids.is_empty() {
             a.push(format!("--dependency=afterok:{}", after_ids.join(":")));
+            // A stage that gave up cancels the stages after it instead of leaving them
+            // pending forever (DependencyNeverSatisfied).
+            a.push("--kill-on-invalid-dep=yes".into());
         }
         a.push(self.script.display().to_string());
         a
