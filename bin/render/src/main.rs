@@ -31,6 +31,14 @@ struct Args {
     /// Only frames numbered a-b (or a single n).
     #[arg(long)]
     frames: Option<String>,
+    /// Skip MakeTexture/MakeShadow/Make*Environment requests (render farms run them once, in
+    /// the pass job, not in every tile).
+    #[arg(long)]
+    no_make: bool,
+    /// Write the frame's float image and depth to this tile file instead of its displays
+    /// (`farm merge` assembles tiles into the displays). One frame only: use with --frames.
+    #[arg(long, value_name = "FILE")]
+    tile_out: Option<PathBuf>,
     /// RIB files; `-` reads stdin.
     #[arg(required = true)]
     files: Vec<PathBuf>,
@@ -80,6 +88,13 @@ fn main() -> ExitCode {
     let show_progress = !args.q && std::io::stderr().is_terminal();
     let mut errors = 0usize;
     let mut fatal = false;
+    let output = match &args.tile_out {
+        Some(path) => Output::Tile {
+            path,
+            written: std::cell::Cell::new(false),
+        },
+        None => Output::Displays,
+    };
     for file in &args.files {
         let parser = match illume_rib::open(file) {
             Ok(p) => p,
@@ -91,9 +106,13 @@ fn main() -> ExitCode {
         };
         let mut ri = Ri::new();
         ri.set_frame_range(frames);
-        ri.set_texture_maker(illume_reyes::texture_maker(|request, warning| {
-            eprintln!("render: warning: {request}: {warning}")
-        }));
+        if args.no_make {
+            ri.set_texture_maker(Box::new(|_, _| Ok(())));
+        } else {
+            ri.set_texture_maker(illume_reyes::texture_maker(|request, warning| {
+                eprintln!("render: warning: {request}: {warning}")
+            }));
+        }
         if let Some(c) = &args.crop {
             ri.set_crop_override(Some([c[0], c[1], c[2], c[3]]));
         }
@@ -105,7 +124,14 @@ fn main() -> ExitCode {
             |d| eprintln!("{d}"),
             |frame| {
                 let parse_seconds = since_last_frame.elapsed().as_secs_f64();
-                errors += render_frame(&pool, &frame, show_progress, args.stats, parse_seconds);
+                errors += render_frame(
+                    &pool,
+                    &frame,
+                    &output,
+                    show_progress,
+                    args.stats,
+                    parse_seconds,
+                );
                 since_last_frame = Instant::now();
             },
         );
@@ -120,10 +146,22 @@ fn main() -> ExitCode {
     }
 }
 
+/// Where a rendered frame goes.
+enum Output<'a> {
+    /// The frame's `Display`s.
+    Displays,
+    /// One tile file (`--tile-out`); `written` catches a second frame that would overwrite it.
+    Tile {
+        path: &'a std::path::Path,
+        written: std::cell::Cell<bool>,
+    },
+}
+
 /// Renders and writes one frame; returns the number of errors.
 fn render_frame(
     pool: &rayon::ThreadPool,
     frame: &illume_ri::Frame,
+    output: &Output,
     show_progress: bool,
     stats: bool,
     parse_seconds: f64,
@@ -166,6 +204,22 @@ fn render_frame(
         errors += usize::from(w.severity == Severity::Error);
     }
     let t = Instant::now();
+    if let Output::Tile { path, written } = output {
+        if written.replace(true) {
+            eprintln!(
+                "render: error: --tile-out {} holds one frame; select it with --frames (frame {} not written)",
+                path.display(),
+                frame.number.map_or("-".into(), |n| n.to_string())
+            );
+            return errors + 1;
+        }
+        let (xres, yres) = (frame.options.xres, frame.options.yres);
+        if let Err(e) = illume_reyes::write_tile(path, &rendered, xres, yres) {
+            eprintln!("render: error: {e}");
+            errors += 1;
+        }
+        return errors;
+    }
     for result in illume_reyes::write_displays(frame, &rendered) {
         match result {
             Ok(w) if w.framebuffer => {

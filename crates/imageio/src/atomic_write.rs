@@ -23,7 +23,7 @@ fn temporary_path(path: &Path) -> PathBuf {
 
 /// Calls `encode` on a buffered writer to a temporary file, then renames it to `path`.
 /// On any failure the temporary file is removed and `path` is left untouched.
-pub(crate) fn write_atomically(
+pub fn write_atomically(
     path: &Path,
     encode: impl FnOnce(&mut BufWriter<std::fs::File>) -> Result<(), ImageError>,
 ) -> Result<(), ImageError> {

@@ -1,7 +1,7 @@
 //! From the rendered float image to the frame's `Display`s through `illume-imageio`.
 //! No `Display` means `ri.tif` (rgba); `framebuffer` writes a PNG named after the display.
 use crate::Rendered;
-use illume_imageio::{write_display, DepthMatrices, Image, ImageError, Quantize};
+use illume_imageio::{write_display_cropped, DepthMatrices, Image, ImageError, Quantize};
 use illume_ri::{transform, DisplaySpec, Frame};
 use std::path::PathBuf;
 
@@ -109,7 +109,9 @@ pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay,
                 };
                 illume_texture::make_shadow(&image, &depth, &path, &opts)?;
             } else {
-                write_display(&path, &kind, &image, q, Some(&depth))?;
+                // Dither is keyed on full-frame pixels, so crops rendered apart (`--crop`,
+                // render farms) quantize exactly as the same pixels of a full render.
+                write_display_cropped(&path, &kind, &image, q, Some(&depth), [r.x0, r.y0])?;
             }
             Ok(WrittenDisplay {
                 path,

@@ -12,10 +12,12 @@ mod rayscene;
 mod refine;
 pub mod sampling;
 mod shading;
+mod tile;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};
 pub use filter::PixelFilter;
 pub use frame_loop::{render_frames_in_order, texture_maker};
+pub use tile::{read_tile, write_tile, Tile};
 
 use illume_ri::{Diagnostic, Frame};
 
