@@ -26,7 +26,7 @@ fn run_rib(rib: &str) -> Vec<Rendered> {
     }));
     let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "x.rib");
     let mut out = Vec::new();
-    let mut go = |ri: &mut Ri, out: &mut Vec<Rendered>| {
+    let go = |ri: &mut Ri, out: &mut Vec<Rendered>| {
         for d in ri.drain_diagnostics() {
             eprintln!("{d}");
         }
@@ -60,7 +60,7 @@ fn run_rib(rib: &str) -> Vec<Rendered> {
 
 fn world() -> String {
     format!(
-        "Surface \"matte\" \"Ka\" [0] \"Kd\" [1]\nPolygon \"P\" [-2.2 -2.2 0  2.2 -2.2 0  2.2 2.2 0  -2.2 2.2 0]\n\
+        "Translate 0 0 10\nSurface \"matte\" \"Ka\" [0] \"Kd\" [1]\nPolygon \"P\" [-2.2 -2.2 0  2.2 -2.2 0  2.2 2.2 0  -2.2 2.2 0]\n\
          AttributeBegin\nTranslate 0 0 {}\nSphere {SPHERE_R} -{SPHERE_R} {SPHERE_R} 360\nAttributeEnd\n",
         -HEIGHT
     )
@@ -70,7 +70,7 @@ fn beauty(light: &str) -> String {
     format!(
         "FrameBegin 2\nFormat {RES} {RES} 1\nProjection \"orthographic\"\nScreenWindow -2 2 -2 2\n\
          PixelSamples 1 1\nPixelFilter \"box\" 1 1\nHider \"hidden\" \"jitter\" [0]\n\
-         WorldBegin\nTranslate 0 0 10\nAttributeBegin\n{light}\nAttributeEnd\nIlluminate 1 1\n\
+         WorldBegin\nAttributeBegin\n{light}\nAttributeEnd\nIlluminate 1 1\n\
          ShadingRate 0.25\n{}WorldEnd\nFrameEnd\n",
         world()
     )
@@ -79,8 +79,18 @@ fn beauty(light: &str) -> String {
 /// The chapter's depth pass from the light (orthographic for a distant light), `n`² pixels.
 fn depth_pass(n: u32, map: &str) -> String {
     let dir = DVec3::from(D).normalize();
-    let centre = DVec3::new(0.0, 0.0, -HEIGHT);
-    let camera_from_world = DMat4::look_to_lh(centre - dir * 6.0, dir, DVec3::Y);
+    // The scenes' world space is the beauty camera's: the objects sit 10 units along +z.
+    let centre = DVec3::new(0.0, 0.0, 10.0 - HEIGHT);
+    // Left-handed light camera: +z along the light, +y up, +x right.
+    let eye = centre - dir * 6.0;
+    let x = DVec3::Y.cross(dir).normalize();
+    let y = dir.cross(x);
+    let camera_from_world = DMat4::from_cols(
+        glam::DVec4::new(x.x, y.x, dir.x, 0.0),
+        glam::DVec4::new(x.y, y.y, dir.y, 0.0),
+        glam::DVec4::new(x.z, y.z, dir.z, 0.0),
+        glam::DVec4::new(-x.dot(eye), -y.dot(eye), -dir.dot(eye), 1.0),
+    );
     let m: Vec<String> = camera_from_world
         .to_cols_array()
         .iter()
@@ -157,6 +167,9 @@ fn main() {
             let t = Instant::now();
             let r = run_rib(&(depth_pass(n, &map) + &beauty(&light)));
             let secs = t.elapsed().as_secs_f64();
+            for w in &r[1].warnings {
+                eprintln!("{w}");
+            }
             let (all, far) = errors(&r[1]);
             println!(
                 "| shadow map | {n}², samples {samples}, bias {bias} | {secs:.3} | {all} | {far} |"

@@ -52,6 +52,7 @@ fn bench(c: &mut Criterion) {
         .collect();
     let dir = DVec3::new(0.3, 1.0, 0.2).normalize();
     let mut g = c.benchmark_group("occlusion");
+    g.sample_size(10);
     g.throughput(Throughput::Elements(n as u64));
     g.bench_function("shadow_rays_100k", |b| {
         b.iter(|| {
