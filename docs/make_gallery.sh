@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Regenerates the README gallery: renders every scene in rib/ch9/ and the single-RIB form of
-# every pipeline in rib/pipelines/ with a release build of `render`, and converts the images
-# they write to small 8-bit PNGs in docs/gallery/ (with the `to_png` example of illume-imageio,
-# so no outside image tool is needed).
+# Regenerates the README gallery: renders every scene in rib/ch9/, rib/geometry.rib,
+# rib/bmrt/arealight.rib and the single-RIB form of every pipeline in rib/pipelines/ with a
+# release build of `render`, and converts the images they write to small 8-bit PNGs in
+# docs/gallery/ (with the `to_png` example of illume-imageio, so no outside image tool is
+# needed).
 #
 # Usage (from anywhere inside the repository):  docs/make_gallery.sh
 # Needs: cargo. RENDER=/path/to/render uses that binary instead of building one.
@@ -71,6 +72,15 @@ for rib in "$root"/rib/ch9/*.rib; do
   done
 done
 
+# Other example scenes: the issue-10 geometry and the BMRT area light.
+for rib in "$root"/rib/geometry.rib "$root"/rib/bmrt/arealight.rib; do
+  name="$(basename "$rib" .rib)"
+  dir="$work/$name"
+  mkdir -p "$dir"
+  render_in "$dir" "$rib" "$name" || continue
+  convert "$dir/$name.tif" "$name.png" "${rib#"$root"/}"
+done
+
 # Pipelines: each runs in a copy of its directory (they read inputs such as sky.exr from the
 # working directory); the images shown, as pipeline:file.tif:gallery-name.png.
 pipeline_images=(
@@ -90,6 +100,8 @@ pipeline_images=(
 )
 for p in "$root"/rib/pipelines/*/; do
   name="$(basename "$p")"
+  # Only workflows with a single-RIB form (rib/pipelines/farm/ is the Slurm test scene).
+  [ -f "$p${name}_single.rib" ] || continue
   dir="$work/pipeline-$name"
   mkdir -p "$dir"
   cp "$p"* "$dir"/
