@@ -306,17 +306,7 @@ fn nurbs_sphere_facing_pole_has_no_holes() {
         nurbs_sphere(1.0)
     );
     let r = render_one(&rib);
-    let rad = (1.0f64 / 6.0).asin().tan() / 12.5f64.to_radians().tan() * 150.0;
-    let mut holes = Vec::new();
-    for y in 0..300 {
-        for x in 0..300 {
-            let (dx, dy) = (x as f64 + 0.5 - 150.0, y as f64 + 0.5 - 150.0);
-            let a = r.rgba[(y * 300 + x) * 4 + 3];
-            if (dx * dx + dy * dy).sqrt() < 0.95 * rad && a != 1.0 {
-                holes.push((x, y, a));
-            }
-        }
-    }
+    let holes = support::facing_pole_holes(&r);
     assert!(
         holes.is_empty(),
         "{} uncovered pixels, e.g. {:?}",

@@ -286,19 +286,7 @@ fn facing_pole_holes(shading_rate: f64, samples: u32) -> Vec<(usize, usize, f32)
     );
     let f = frames(&rib, None);
     let r = render(&f[0], &RenderSettings::default());
-    // Silhouette radius in raster: tan(asin(1/6)) against the 12.5° half field of view.
-    let rad = (1.0f64 / 6.0).asin().tan() / 12.5f64.to_radians().tan() * 150.0;
-    let mut holes = Vec::new();
-    for y in 0..300 {
-        for x in 0..300 {
-            let (dx, dy) = (x as f64 + 0.5 - 150.0, y as f64 + 0.5 - 150.0);
-            let a = r.rgba[(y * 300 + x) * 4 + 3];
-            if (dx * dx + dy * dy).sqrt() < 0.95 * rad && a != 1.0 {
-                holes.push((x, y, a));
-            }
-        }
-    }
-    holes
+    support::facing_pole_holes(&r)
 }
 
 #[test]

@@ -61,3 +61,23 @@ pub fn run_rib(rib: &str) -> Vec<illume_reyes::Rendered> {
     );
     out
 }
+
+/// Pixels of a 300×300 render whose centre lies within 0.95 of the silhouette radius of a unit
+/// sphere at distance 6 seen with a 25° field of view, and that are not fully covered: the
+/// crack detector of the facing-pole tests (quadric and NURBS spheres).
+#[allow(dead_code)] // only the render and geometry tests look for cracks
+pub fn facing_pole_holes(r: &illume_reyes::Rendered) -> Vec<(usize, usize, f32)> {
+    // Silhouette radius in raster: tan(asin(1/6)) against the 12.5° half field of view.
+    let rad = (1.0f64 / 6.0).asin().tan() / 12.5f64.to_radians().tan() * 150.0;
+    let mut holes = Vec::new();
+    for y in 0..300 {
+        for x in 0..300 {
+            let (dx, dy) = (x as f64 + 0.5 - 150.0, y as f64 + 0.5 - 150.0);
+            let a = r.rgba[(y * 300 + x) * 4 + 3];
+            if (dx * dx + dy * dy).sqrt() < 0.95 * rad && a != 1.0 {
+                holes.push((x, y, a));
+            }
+        }
+    }
+    holes
+}

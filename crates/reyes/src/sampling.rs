@@ -2,15 +2,7 @@
 //! only, never of the bucket or thread that computes it, so images are bit-identical for any
 //! thread count and any crop window.
 
-/// A 32-bit integer hash with good avalanche (the "lowbias32" finaliser).
-fn hash(mut x: u32) -> u32 {
-    x ^= x >> 16;
-    x = x.wrapping_mul(0x7feb_352d);
-    x ^= x >> 15;
-    x = x.wrapping_mul(0x846c_a68b);
-    x ^= x >> 16;
-    x
-}
+use illume_shade::lowbias32 as hash;
 
 fn unit(h: u32) -> f32 {
     // 24 high bits → [0, 1).

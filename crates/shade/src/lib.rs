@@ -32,6 +32,7 @@ mod areaemitter;
 mod displacement;
 mod error;
 mod geometric;
+mod hash;
 mod illuminance;
 mod light;
 mod lighting;
@@ -49,6 +50,7 @@ pub use areaemitter::AreaEmitter;
 pub use displacement::{displace, displacement, Displacement};
 pub use error::ShadeError;
 pub use geometric::{faceforward, fresnel, normalize_or_zero, reflect, refract, Fresnel};
+pub use hash::lowbias32;
 pub use illuminance::{category_matches, Illuminance};
 pub use light::{light, AreaSample, Light, LightCache, LightSamples};
 pub use lighting::{

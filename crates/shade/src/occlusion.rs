@@ -7,6 +7,7 @@
 //! plus a float-rounding term proportional to `|P|`: the shading points lie on the true
 //! surface, the occluding triangles on chords inside a convex one, and without the push a lit
 //! curved surface would shadow itself (acne).
+use crate::hash::lowbias32 as hash;
 use crate::shadingenv::ShadingEnv;
 use crate::shadinggrid::ShadingGrid;
 use glam::{DVec3, Vec3};
@@ -30,16 +31,6 @@ pub(crate) fn ray_origin(grid: &ShadingGrid, i: usize, dir: DVec3, env: &Shading
     let side = if ng.dot(dir) < 0.0 { -1.0 } else { 1.0 };
     let offset = f64::from(env.ray_offset.max(0.0)) + ROUNDING_OFFSET * p.abs().max_element();
     p + ng * (side * offset)
-}
-
-/// A 32-bit integer hash with good avalanche (the "lowbias32" finaliser).
-fn hash(mut x: u32) -> u32 {
-    x ^= x >> 16;
-    x = x.wrapping_mul(0x7feb_352d);
-    x ^= x >> 15;
-    x = x.wrapping_mul(0x846c_a68b);
-    x ^= x >> 16;
-    x
 }
 
 /// Two uniform numbers for sample `k` of a shaded point: a hash of the point's position, the
