@@ -8,9 +8,9 @@
 //!
 //! New knobs go here: add a variant to [`Knob`], its values to [`Knob::values`], where it applies
 //! to [`Knob::applies_to`], and how it changes a render to [`Settings::with`]. Ray-traced
-//! shadows (issue 9) are meant to enter as a `ShadowMethod` knob (map vs rays) applying to
-//! [`crate::scene::SceneKind::DiskShadow`], so "ray-traced vs shadow-map shadows at equal
-//! error" reads straight off the plot.
+//! shadows (issue 9) enter as [`Knob::RaytracedShadowSamples`] on
+//! [`crate::scene::SceneKind::DiskShadow`], beside the shadow-map knobs, so "ray-traced vs
+//! shadow-map shadows at equal error" reads straight off the plot.
 
 use crate::scene::SceneKind;
 
@@ -28,6 +28,10 @@ pub enum Knob {
     ShadowBlur,
     /// The shadow map's resolution (square), the depth pass's `Format`.
     ShadowMapSize,
+    /// `shadowname "raytrace"` instead of a map (no depth pass, no `MakeShadow`), sweeping
+    /// `samples` at blur 0: the point light's hard edge is what the closed form has, so blur
+    /// would only add error. The value is the sample count.
+    RaytracedShadowSamples,
     /// `MakeCubeFaceEnvironment` filter width (the mip-map build filter, in texels).
     TextureFilterWidth,
     /// `blur` of the environment lookup (shinymetal), a fraction of the map.
@@ -37,7 +41,7 @@ pub enum Knob {
 }
 
 /// Every knob, in the order the CSV, plot legend and table list them.
-pub const ALL_KNOBS: [Knob; 11] = [
+pub const ALL_KNOBS: [Knob; 12] = [
     Knob::PixelSamples,
     Knob::ShadingRate,
     Knob::SamplesAndRate,
@@ -45,6 +49,7 @@ pub const ALL_KNOBS: [Knob; 11] = [
     Knob::ShadowSamples,
     Knob::ShadowBlur,
     Knob::ShadowMapSize,
+    Knob::RaytracedShadowSamples,
     Knob::TextureFilterWidth,
     Knob::EnvironmentBlur,
     Knob::BucketSize,
@@ -73,6 +78,7 @@ impl Knob {
             Knob::ShadowSamples => "SHADOW SAMPLES",
             Knob::ShadowBlur => "SHADOW BLUR",
             Knob::ShadowMapSize => "SHADOW MAP SIZE",
+            Knob::RaytracedShadowSamples => "RAYTRACED SHADOWS",
             Knob::TextureFilterWidth => "TEX FILTER WIDTH",
             Knob::EnvironmentBlur => "ENV BLUR",
             Knob::BucketSize => "BUCKETSIZE",
@@ -91,6 +97,7 @@ impl Knob {
             Knob::ShadowSamples => (&[1.0, 4.0, 16.0, 64.0, 256.0], &[1.0, 16.0, 64.0]),
             Knob::ShadowBlur => (&[0.0, 0.005, 0.01, 0.02, 0.05], &[0.0, 0.01, 0.05]),
             Knob::ShadowMapSize => (&[64.0, 128.0, 256.0, 512.0, 1024.0], &[64.0, 256.0]),
+            Knob::RaytracedShadowSamples => (&[1.0, 4.0, 16.0, 64.0], &[1.0, 16.0]),
             Knob::TextureFilterWidth => (&[0.5, 1.0, 2.0, 4.0], &[1.0, 4.0]),
             Knob::EnvironmentBlur => (&[0.0, 0.005, 0.01, 0.02, 0.05], &[0.0, 0.02]),
             Knob::BucketSize => (&[8.0, 16.0, 32.0, 64.0], &[8.0, 32.0]),
@@ -99,11 +106,14 @@ impl Knob {
         if quick { fast } else { full }.to_vec()
     }
 
-    /// Whether the knob changes anything in a scene of this kind (shadow knobs need a shadow
-    /// map, texture knobs an environment map).
+    /// Whether the knob changes anything in a scene of this kind (shadow knobs need a
+    /// shadowing light, texture knobs an environment map).
     pub fn applies_to(self, kind: &SceneKind) -> bool {
         match self {
-            Knob::ShadowSamples | Knob::ShadowBlur | Knob::ShadowMapSize => {
+            Knob::ShadowSamples
+            | Knob::ShadowBlur
+            | Knob::ShadowMapSize
+            | Knob::RaytracedShadowSamples => {
                 matches!(kind, SceneKind::DiskShadow)
             }
             Knob::TextureFilterWidth | Knob::EnvironmentBlur => {
@@ -142,6 +152,9 @@ impl Knob {
             Knob::ShadowSamples => format!("shadow samples {value}"),
             Knob::ShadowBlur => format!("shadow blur {value}"),
             Knob::ShadowMapSize => format!("shadow map {value}²"),
+            Knob::RaytracedShadowSamples => {
+                format!("shadowname \"raytrace\", samples {value}, blur 0")
+            }
             Knob::TextureFilterWidth => format!("env filter width {value}"),
             Knob::EnvironmentBlur => format!("env blur {value}"),
             Knob::BucketSize => format!("bucketsize {value}"),
@@ -165,6 +178,8 @@ pub struct Settings {
     pub shadow_samples: u32,
     pub shadow_blur: f64,
     pub shadow_map_size: u32,
+    /// `shadowname "raytrace"`: shadow rays instead of the map (`shadow_map_size` unused).
+    pub raytraced_shadows: bool,
     pub filter_width: f64,
     pub env_blur: f64,
     pub bucket_size: u32,
@@ -182,6 +197,7 @@ impl Settings {
             shadow_samples: 16,
             shadow_blur: 0.01,
             shadow_map_size,
+            raytraced_shadows: false,
             filter_width: 1.0,
             env_blur: 0.0,
             bucket_size: 16,
@@ -218,6 +234,11 @@ impl Settings {
             Knob::ShadowSamples => s.shadow_samples = value as u32,
             Knob::ShadowBlur => s.shadow_blur = value,
             Knob::ShadowMapSize => s.shadow_map_size = value as u32,
+            Knob::RaytracedShadowSamples => {
+                s.raytraced_shadows = true;
+                s.shadow_samples = value as u32;
+                s.shadow_blur = 0.0;
+            }
             Knob::TextureFilterWidth => s.filter_width = value,
             Knob::EnvironmentBlur => s.env_blur = value,
             Knob::BucketSize => s.bucket_size = value as u32,
@@ -245,5 +266,41 @@ mod tests {
             (16, 0.1, 256)
         );
         assert_eq!(c.shadow_blur, d.shadow_blur);
+        assert!(!d.raytraced_shadows && !c.raytraced_shadows);
+    }
+
+    #[test]
+    fn raytraced_shadow_knob_switches_the_light_and_sweeps_samples_at_blur_0() {
+        let d = Settings::defaults(256, 2);
+        let rt = d.with(Knob::RaytracedShadowSamples, 4.0);
+        assert!(rt.raytraced_shadows);
+        assert_eq!((rt.shadow_samples, rt.shadow_blur), (4, 0.0));
+        // Everything else stays at the defaults.
+        let back = Settings {
+            raytraced_shadows: false,
+            shadow_samples: d.shadow_samples,
+            shadow_blur: d.shadow_blur,
+            ..rt
+        };
+        assert_eq!(back, d);
+        // The map knobs leave the light on its map.
+        for k in [Knob::ShadowSamples, Knob::ShadowBlur, Knob::ShadowMapSize] {
+            assert!(!d.with(k, 4.0).raytraced_shadows, "{k:?}");
+        }
+        let k = Knob::RaytracedShadowSamples;
+        assert!(k.applies_to(&SceneKind::DiskShadow));
+        assert!(!k.applies_to(&SceneKind::MatteSphere) && !k.applies_to(&SceneKind::MirrorSphere));
+        assert!(k.changes_image());
+        assert_eq!(Knob::from_name(k.name()), Some(k));
+        assert_eq!(k.values(false), [1.0, 4.0, 16.0, 64.0]);
+        assert!(k.values(true).len() < k.values(false).len());
+    }
+
+    #[test]
+    fn knob_names_are_distinct_and_round_trip() {
+        for (i, a) in ALL_KNOBS.iter().enumerate() {
+            assert_eq!(Knob::from_name(a.name()), Some(*a));
+            assert!(ALL_KNOBS[..i].iter().all(|b| b.name() != a.name()));
+        }
     }
 }
