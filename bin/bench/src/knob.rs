@@ -29,9 +29,14 @@ pub enum Knob {
     /// The shadow map's resolution (square), the depth pass's `Format`.
     ShadowMapSize,
     /// `shadowname "raytrace"` instead of a map (no depth pass, no `MakeShadow`), sweeping
-    /// `samples` at blur 0: the point light's hard edge is what the closed form has, so blur
-    /// would only add error. The value is the sample count.
+    /// `samples` at the default blur 0.01, as [`Knob::ShadowSamples`] does for the map. Not at
+    /// blur 0: there the renderer traces one ray whatever `samples` says, so every point would
+    /// be the same image (blur 0 is [`Knob::RaytracedShadowBlur`]'s first point).
     RaytracedShadowSamples,
+    /// `shadowname "raytrace"`, sweeping `blur` (cone half-angle, radians) at the default 16
+    /// samples, as [`Knob::ShadowBlur`] does for the map. Blur 0 is one hard-edged ray: the
+    /// point light's shadow the closed form has.
+    RaytracedShadowBlur,
     /// `MakeCubeFaceEnvironment` filter width (the mip-map build filter, in texels).
     TextureFilterWidth,
     /// `blur` of the environment lookup (shinymetal), a fraction of the map.
@@ -41,7 +46,7 @@ pub enum Knob {
 }
 
 /// Every knob, in the order the CSV, plot legend and table list them.
-pub const ALL_KNOBS: [Knob; 12] = [
+pub const ALL_KNOBS: [Knob; 13] = [
     Knob::PixelSamples,
     Knob::ShadingRate,
     Knob::SamplesAndRate,
@@ -50,6 +55,7 @@ pub const ALL_KNOBS: [Knob; 12] = [
     Knob::ShadowBlur,
     Knob::ShadowMapSize,
     Knob::RaytracedShadowSamples,
+    Knob::RaytracedShadowBlur,
     Knob::TextureFilterWidth,
     Knob::EnvironmentBlur,
     Knob::BucketSize,
@@ -78,7 +84,8 @@ impl Knob {
             Knob::ShadowSamples => "SHADOW SAMPLES",
             Knob::ShadowBlur => "SHADOW BLUR",
             Knob::ShadowMapSize => "SHADOW MAP SIZE",
-            Knob::RaytracedShadowSamples => "RAYTRACED SHADOWS",
+            Knob::RaytracedShadowSamples => "RAYTRACED SAMPLES",
+            Knob::RaytracedShadowBlur => "RAYTRACED BLUR",
             Knob::TextureFilterWidth => "TEX FILTER WIDTH",
             Knob::EnvironmentBlur => "ENV BLUR",
             Knob::BucketSize => "BUCKETSIZE",
@@ -98,6 +105,7 @@ impl Knob {
             Knob::ShadowBlur => (&[0.0, 0.005, 0.01, 0.02, 0.05], &[0.0, 0.01, 0.05]),
             Knob::ShadowMapSize => (&[64.0, 128.0, 256.0, 512.0, 1024.0], &[64.0, 256.0]),
             Knob::RaytracedShadowSamples => (&[1.0, 4.0, 16.0, 64.0], &[1.0, 16.0]),
+            Knob::RaytracedShadowBlur => (&[0.0, 0.005, 0.01, 0.02], &[0.0, 0.01]),
             Knob::TextureFilterWidth => (&[0.5, 1.0, 2.0, 4.0], &[1.0, 4.0]),
             Knob::EnvironmentBlur => (&[0.0, 0.005, 0.01, 0.02, 0.05], &[0.0, 0.02]),
             Knob::BucketSize => (&[8.0, 16.0, 32.0, 64.0], &[8.0, 32.0]),
@@ -113,7 +121,8 @@ impl Knob {
             Knob::ShadowSamples
             | Knob::ShadowBlur
             | Knob::ShadowMapSize
-            | Knob::RaytracedShadowSamples => {
+            | Knob::RaytracedShadowSamples
+            | Knob::RaytracedShadowBlur => {
                 matches!(kind, SceneKind::DiskShadow)
             }
             Knob::TextureFilterWidth | Knob::EnvironmentBlur => {
@@ -152,9 +161,8 @@ impl Knob {
             Knob::ShadowSamples => format!("shadow samples {value}"),
             Knob::ShadowBlur => format!("shadow blur {value}"),
             Knob::ShadowMapSize => format!("shadow map {value}²"),
-            Knob::RaytracedShadowSamples => {
-                format!("shadowname \"raytrace\", samples {value}, blur 0")
-            }
+            Knob::RaytracedShadowSamples => format!("raytraced, samples {value}"),
+            Knob::RaytracedShadowBlur => format!("raytraced, blur {value}"),
             Knob::TextureFilterWidth => format!("env filter width {value}"),
             Knob::EnvironmentBlur => format!("env blur {value}"),
             Knob::BucketSize => format!("bucketsize {value}"),
@@ -237,7 +245,10 @@ impl Settings {
             Knob::RaytracedShadowSamples => {
                 s.raytraced_shadows = true;
                 s.shadow_samples = value as u32;
-                s.shadow_blur = 0.0;
+            }
+            Knob::RaytracedShadowBlur => {
+                s.raytraced_shadows = true;
+                s.shadow_blur = value;
             }
             Knob::TextureFilterWidth => s.filter_width = value,
             Knob::EnvironmentBlur => s.env_blur = value,
@@ -270,30 +281,46 @@ mod tests {
     }
 
     #[test]
-    fn raytraced_shadow_knob_switches_the_light_and_sweeps_samples_at_blur_0() {
+    fn raytraced_shadow_knobs_switch_the_light_and_sweep_like_the_map_knobs() {
         let d = Settings::defaults(256, 2);
         let rt = d.with(Knob::RaytracedShadowSamples, 4.0);
         assert!(rt.raytraced_shadows);
-        assert_eq!((rt.shadow_samples, rt.shadow_blur), (4, 0.0));
+        assert_eq!((rt.shadow_samples, rt.shadow_blur), (4, d.shadow_blur));
+        let hard = d.with(Knob::RaytracedShadowBlur, 0.0);
+        assert!(hard.raytraced_shadows);
+        assert_eq!((hard.shadow_samples, hard.shadow_blur), (16, 0.0));
         // Everything else stays at the defaults.
-        let back = Settings {
-            raytraced_shadows: false,
-            shadow_samples: d.shadow_samples,
-            shadow_blur: d.shadow_blur,
-            ..rt
-        };
-        assert_eq!(back, d);
+        for s in [rt, hard] {
+            let back = Settings {
+                raytraced_shadows: false,
+                shadow_samples: d.shadow_samples,
+                shadow_blur: d.shadow_blur,
+                ..s
+            };
+            assert_eq!(back, d);
+        }
+        // The ray-traced defaults are the map defaults with rays: one shared point each.
+        assert_eq!(
+            d.with(Knob::RaytracedShadowSamples, 16.0),
+            d.with(Knob::RaytracedShadowBlur, 0.01)
+        );
         // The map knobs leave the light on its map.
         for k in [Knob::ShadowSamples, Knob::ShadowBlur, Knob::ShadowMapSize] {
             assert!(!d.with(k, 4.0).raytraced_shadows, "{k:?}");
         }
-        let k = Knob::RaytracedShadowSamples;
-        assert!(k.applies_to(&SceneKind::DiskShadow));
-        assert!(!k.applies_to(&SceneKind::MatteSphere) && !k.applies_to(&SceneKind::MirrorSphere));
-        assert!(k.changes_image());
-        assert_eq!(Knob::from_name(k.name()), Some(k));
-        assert_eq!(k.values(false), [1.0, 4.0, 16.0, 64.0]);
-        assert!(k.values(true).len() < k.values(false).len());
+        for k in [Knob::RaytracedShadowSamples, Knob::RaytracedShadowBlur] {
+            assert!(k.applies_to(&SceneKind::DiskShadow));
+            assert!(!k.applies_to(&SceneKind::MatteSphere));
+            assert!(!k.applies_to(&SceneKind::MirrorSphere));
+            assert!(k.changes_image());
+            assert!(k.values(true).len() < k.values(false).len());
+            assert!(k.values(true).iter().all(|v| k.values(false).contains(v)));
+        }
+        assert_eq!(
+            Knob::RaytracedShadowSamples.values(false),
+            [1.0, 4.0, 16.0, 64.0]
+        );
+        assert_eq!(Knob::RaytracedShadowBlur.values(false)[0], 0.0);
     }
 
     #[test]

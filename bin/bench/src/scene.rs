@@ -260,7 +260,7 @@ mod tests {
             !rt.contains("MakeShadow") && !rt.contains("zfile") && !rt.contains("FrameBegin"),
             "{rt}"
         );
-        assert!(rt.contains("\"shadowname\" [\"raytrace\"] \"samples\" [4] \"blur\" [0]"));
+        assert!(rt.contains("\"shadowname\" [\"raytrace\"] \"samples\" [4] \"blur\" [0.01]"));
         // The disk is in the world (shadow rays need it), between the near plane and the
         // light, and the plane beyond the near plane.
         let world = &rt[rt.find("WorldBegin").unwrap()..];
