@@ -37,6 +37,11 @@ pub enum Knob {
     /// samples, as [`Knob::ShadowBlur`] does for the map. Blur 0 is one hard-edged ray: the
     /// point light's shadow the closed form has.
     RaytracedShadowBlur,
+    /// `shadowname "raytrace"` at blur 0 (one hard ray per shaded point) with PixelSamples and
+    /// ShadingRate moved together as [`Knob::SamplesAndRate`] (same index): a ray answers
+    /// lit-or-not at one point per micropolygon, where a map lookup filters over the
+    /// micropolygon's footprint, so a traced edge is antialiased only by finer shading.
+    RaytracedSamplesAndRate,
     /// `MakeCubeFaceEnvironment` filter width (the mip-map build filter, in texels).
     TextureFilterWidth,
     /// `blur` of the environment lookup (shinymetal), a fraction of the map.
@@ -46,7 +51,7 @@ pub enum Knob {
 }
 
 /// Every knob, in the order the CSV, plot legend and table list them.
-pub const ALL_KNOBS: [Knob; 13] = [
+pub const ALL_KNOBS: [Knob; 14] = [
     Knob::PixelSamples,
     Knob::ShadingRate,
     Knob::SamplesAndRate,
@@ -56,6 +61,7 @@ pub const ALL_KNOBS: [Knob; 13] = [
     Knob::ShadowMapSize,
     Knob::RaytracedShadowSamples,
     Knob::RaytracedShadowBlur,
+    Knob::RaytracedSamplesAndRate,
     Knob::TextureFilterWidth,
     Knob::EnvironmentBlur,
     Knob::BucketSize,
@@ -86,6 +92,7 @@ impl Knob {
             Knob::ShadowMapSize => "SHADOW MAP SIZE",
             Knob::RaytracedShadowSamples => "RAYTRACED SAMPLES",
             Knob::RaytracedShadowBlur => "RAYTRACED BLUR",
+            Knob::RaytracedSamplesAndRate => "RAYTRACED SAMPLES+RATE",
             Knob::TextureFilterWidth => "TEX FILTER WIDTH",
             Knob::EnvironmentBlur => "ENV BLUR",
             Knob::BucketSize => "BUCKETSIZE",
@@ -94,7 +101,8 @@ impl Knob {
     }
 
     /// The values swept; `quick` keeps fewer so `bench --quick` stays well under 2 minutes.
-    /// For [`Knob::SamplesAndRate`] the value is the index into [`SAMPLES_AND_RATE`].
+    /// For [`Knob::SamplesAndRate`] and [`Knob::RaytracedSamplesAndRate`] the value is the
+    /// index into [`SAMPLES_AND_RATE`].
     pub fn values(self, quick: bool) -> Vec<f64> {
         let (full, fast): (&[f64], &[f64]) = match self {
             Knob::PixelSamples => (&[1.0, 2.0, 3.0, 4.0, 6.0, 8.0], &[1.0, 2.0, 4.0]),
@@ -106,6 +114,7 @@ impl Knob {
             Knob::ShadowMapSize => (&[64.0, 128.0, 256.0, 512.0, 1024.0], &[64.0, 256.0]),
             Knob::RaytracedShadowSamples => (&[1.0, 4.0, 16.0, 64.0], &[1.0, 16.0]),
             Knob::RaytracedShadowBlur => (&[0.0, 0.005, 0.01, 0.02], &[0.0, 0.01]),
+            Knob::RaytracedSamplesAndRate => (&[0.0, 1.0, 2.0, 3.0, 4.0, 5.0], &[0.0, 3.0]),
             Knob::TextureFilterWidth => (&[0.5, 1.0, 2.0, 4.0], &[1.0, 4.0]),
             Knob::EnvironmentBlur => (&[0.0, 0.005, 0.01, 0.02, 0.05], &[0.0, 0.02]),
             Knob::BucketSize => (&[8.0, 16.0, 32.0, 64.0], &[8.0, 32.0]),
@@ -122,7 +131,8 @@ impl Knob {
             | Knob::ShadowBlur
             | Knob::ShadowMapSize
             | Knob::RaytracedShadowSamples
-            | Knob::RaytracedShadowBlur => {
+            | Knob::RaytracedShadowBlur
+            | Knob::RaytracedSamplesAndRate => {
                 matches!(kind, SceneKind::DiskShadow)
             }
             Knob::TextureFilterWidth | Knob::EnvironmentBlur => {
@@ -163,6 +173,10 @@ impl Knob {
             Knob::ShadowMapSize => format!("shadow map {value}²"),
             Knob::RaytracedShadowSamples => format!("raytraced, samples {value}"),
             Knob::RaytracedShadowBlur => format!("raytraced, blur {value}"),
+            Knob::RaytracedSamplesAndRate => {
+                let (n, r) = samples_and_rate(value);
+                format!("raytraced blur 0, PixelSamples {n} {n}, ShadingRate {r}")
+            }
             Knob::TextureFilterWidth => format!("env filter width {value}"),
             Knob::EnvironmentBlur => format!("env blur {value}"),
             Knob::BucketSize => format!("bucketsize {value}"),
@@ -250,6 +264,13 @@ impl Settings {
                 s.raytraced_shadows = true;
                 s.shadow_blur = value;
             }
+            Knob::RaytracedSamplesAndRate => {
+                let (n, r) = samples_and_rate(value);
+                s.pixel_samples = n as u32;
+                s.shading_rate = r;
+                s.raytraced_shadows = true;
+                s.shadow_blur = 0.0;
+            }
             Knob::TextureFilterWidth => s.filter_width = value,
             Knob::EnvironmentBlur => s.env_blur = value,
             Knob::BucketSize => s.bucket_size = value as u32,
@@ -321,6 +342,18 @@ mod tests {
             [1.0, 4.0, 16.0, 64.0]
         );
         assert_eq!(Knob::RaytracedShadowBlur.values(false)[0], 0.0);
+        // Samples and rate: the map knob's pairs, with one hard ray.
+        let k = Knob::RaytracedSamplesAndRate;
+        assert!(k.applies_to(&SceneKind::DiskShadow) && !k.applies_to(&SceneKind::MatteSphere));
+        assert_eq!(k.values(false), Knob::SamplesAndRate.values(false));
+        for v in k.values(false) {
+            let (rt, map) = (d.with(k, v), d.with(Knob::SamplesAndRate, v));
+            assert!(rt.raytraced_shadows && rt.shadow_blur == 0.0);
+            assert_eq!(
+                (rt.pixel_samples, rt.shading_rate),
+                (map.pixel_samples, map.shading_rate)
+            );
+        }
     }
 
     #[test]
