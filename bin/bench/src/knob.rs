@@ -42,6 +42,10 @@ pub enum Knob {
     /// lit-or-not at one point per micropolygon, where a map lookup filters over the
     /// micropolygon's footprint, so a traced edge is antialiased only by finer shading.
     RaytracedSamplesAndRate,
+    /// [`Knob::RaytracedSamplesAndRate`] with `ShadingInterpolation "smooth"`: Gouraud
+    /// interpolation between the traced vertices puts the edge between them instead of at
+    /// one corner of each micropolygon.
+    RaytracedSmoothSamplesAndRate,
     /// `MakeCubeFaceEnvironment` filter width (the mip-map build filter, in texels).
     TextureFilterWidth,
     /// `blur` of the environment lookup (shinymetal), a fraction of the map.
@@ -51,7 +55,7 @@ pub enum Knob {
 }
 
 /// Every knob, in the order the CSV, plot legend and table list them.
-pub const ALL_KNOBS: [Knob; 14] = [
+pub const ALL_KNOBS: [Knob; 15] = [
     Knob::PixelSamples,
     Knob::ShadingRate,
     Knob::SamplesAndRate,
@@ -62,6 +66,7 @@ pub const ALL_KNOBS: [Knob; 14] = [
     Knob::RaytracedShadowSamples,
     Knob::RaytracedShadowBlur,
     Knob::RaytracedSamplesAndRate,
+    Knob::RaytracedSmoothSamplesAndRate,
     Knob::TextureFilterWidth,
     Knob::EnvironmentBlur,
     Knob::BucketSize,
@@ -93,6 +98,7 @@ impl Knob {
             Knob::RaytracedShadowSamples => "RAYTRACED SAMPLES",
             Knob::RaytracedShadowBlur => "RAYTRACED BLUR",
             Knob::RaytracedSamplesAndRate => "RAYTRACED SAMPLES+RATE",
+            Knob::RaytracedSmoothSamplesAndRate => "RAYTRACED SMOOTH S+R",
             Knob::TextureFilterWidth => "TEX FILTER WIDTH",
             Knob::EnvironmentBlur => "ENV BLUR",
             Knob::BucketSize => "BUCKETSIZE",
@@ -101,8 +107,8 @@ impl Knob {
     }
 
     /// The values swept; `quick` keeps fewer so `bench --quick` stays well under 2 minutes.
-    /// For [`Knob::SamplesAndRate`] and [`Knob::RaytracedSamplesAndRate`] the value is the
-    /// index into [`SAMPLES_AND_RATE`].
+    /// For [`Knob::SamplesAndRate`] and the ray-traced samples-and-rate knobs the value is
+    /// the index into [`SAMPLES_AND_RATE`].
     pub fn values(self, quick: bool) -> Vec<f64> {
         let (full, fast): (&[f64], &[f64]) = match self {
             Knob::PixelSamples => (&[1.0, 2.0, 3.0, 4.0, 6.0, 8.0], &[1.0, 2.0, 4.0]),
@@ -114,7 +120,9 @@ impl Knob {
             Knob::ShadowMapSize => (&[64.0, 128.0, 256.0, 512.0, 1024.0], &[64.0, 256.0]),
             Knob::RaytracedShadowSamples => (&[1.0, 4.0, 16.0, 64.0], &[1.0, 16.0]),
             Knob::RaytracedShadowBlur => (&[0.0, 0.005, 0.01, 0.02], &[0.0, 0.01]),
-            Knob::RaytracedSamplesAndRate => (&[0.0, 1.0, 2.0, 3.0, 4.0, 5.0], &[0.0, 3.0]),
+            Knob::RaytracedSamplesAndRate | Knob::RaytracedSmoothSamplesAndRate => {
+                (&[0.0, 1.0, 2.0, 3.0, 4.0, 5.0], &[0.0, 3.0])
+            }
             Knob::TextureFilterWidth => (&[0.5, 1.0, 2.0, 4.0], &[1.0, 4.0]),
             Knob::EnvironmentBlur => (&[0.0, 0.005, 0.01, 0.02, 0.05], &[0.0, 0.02]),
             Knob::BucketSize => (&[8.0, 16.0, 32.0, 64.0], &[8.0, 32.0]),
@@ -132,7 +140,8 @@ impl Knob {
             | Knob::ShadowMapSize
             | Knob::RaytracedShadowSamples
             | Knob::RaytracedShadowBlur
-            | Knob::RaytracedSamplesAndRate => {
+            | Knob::RaytracedSamplesAndRate
+            | Knob::RaytracedSmoothSamplesAndRate => {
                 matches!(kind, SceneKind::DiskShadow)
             }
             Knob::TextureFilterWidth | Knob::EnvironmentBlur => {
@@ -176,6 +185,10 @@ impl Knob {
             Knob::RaytracedSamplesAndRate => {
                 let (n, r) = samples_and_rate(value);
                 format!("raytraced blur 0, PixelSamples {n} {n}, ShadingRate {r}")
+            }
+            Knob::RaytracedSmoothSamplesAndRate => {
+                let (n, r) = samples_and_rate(value);
+                format!("raytraced blur 0, smooth, PixelSamples {n} {n}, ShadingRate {r}")
             }
             Knob::TextureFilterWidth => format!("env filter width {value}"),
             Knob::EnvironmentBlur => format!("env blur {value}"),
@@ -264,12 +277,13 @@ impl Settings {
                 s.raytraced_shadows = true;
                 s.shadow_blur = value;
             }
-            Knob::RaytracedSamplesAndRate => {
+            Knob::RaytracedSamplesAndRate | Knob::RaytracedSmoothSamplesAndRate => {
                 let (n, r) = samples_and_rate(value);
                 s.pixel_samples = n as u32;
                 s.shading_rate = r;
                 s.raytraced_shadows = true;
                 s.shadow_blur = 0.0;
+                s.smooth = knob == Knob::RaytracedSmoothSamplesAndRate;
             }
             Knob::TextureFilterWidth => s.filter_width = value,
             Knob::EnvironmentBlur => s.env_blur = value,
@@ -343,16 +357,22 @@ mod tests {
         );
         assert_eq!(Knob::RaytracedShadowBlur.values(false)[0], 0.0);
         // Samples and rate: the map knob's pairs, with one hard ray.
-        let k = Knob::RaytracedSamplesAndRate;
-        assert!(k.applies_to(&SceneKind::DiskShadow) && !k.applies_to(&SceneKind::MatteSphere));
-        assert_eq!(k.values(false), Knob::SamplesAndRate.values(false));
-        for v in k.values(false) {
-            let (rt, map) = (d.with(k, v), d.with(Knob::SamplesAndRate, v));
-            assert!(rt.raytraced_shadows && rt.shadow_blur == 0.0);
-            assert_eq!(
-                (rt.pixel_samples, rt.shading_rate),
-                (map.pixel_samples, map.shading_rate)
-            );
+        for k in [
+            Knob::RaytracedSamplesAndRate,
+            Knob::RaytracedSmoothSamplesAndRate,
+        ] {
+            assert!(k.applies_to(&SceneKind::DiskShadow));
+            assert!(!k.applies_to(&SceneKind::MatteSphere));
+            assert_eq!(k.values(false), Knob::SamplesAndRate.values(false));
+            for v in k.values(false) {
+                let (rt, map) = (d.with(k, v), d.with(Knob::SamplesAndRate, v));
+                assert!(rt.raytraced_shadows && rt.shadow_blur == 0.0);
+                assert_eq!(rt.smooth, k == Knob::RaytracedSmoothSamplesAndRate);
+                assert_eq!(
+                    (rt.pixel_samples, rt.shading_rate),
+                    (map.pixel_samples, map.shading_rate)
+                );
+            }
         }
     }
 
