@@ -8,7 +8,7 @@ use crate::sweep::Point;
 /// The header row; columns are documented in the README's "Speed against error" section.
 pub const HEADER: &str =
     "scene,knob,value,pixel_samples,shading_rate,smooth,shadow_samples,shadow_blur,\
-shadow_map_size,filter_width,env_blur,bucket_size,threads,wall_s,cpu_s,peak_rss_mb,micropolygons,\
+shadow_map_size,filter_width,env_blur,bucket_size,threads,raytraced_shadows,wall_s,cpu_s,peak_rss_mb,micropolygons,\
 rmse_converged,max_converged,psnr_converged,rmse_closed,max_closed,psnr_closed,pareto";
 
 fn num(x: f64) -> String {
@@ -36,7 +36,7 @@ pub fn to_csv(points: &[Point]) -> String {
         let s = &p.settings;
         let c = &p.cost;
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{:.1},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{},{:.1},{},{},{},{}\n",
             p.scene,
             p.knob.map_or("converged", |k| k.name()),
             num(p.value),
@@ -50,6 +50,7 @@ pub fn to_csv(points: &[Point]) -> String {
             s.env_blur,
             s.bucket_size,
             s.threads,
+            u8::from(s.raytraced_shadows),
             c.wall_seconds,
             // CPU time is whole 10 ms ticks: three decimals hold it exactly.
             num((c.cpu_seconds * 1000.0).round() / 1000.0),
@@ -104,6 +105,8 @@ pub fn from_csv(text: &str) -> Result<Vec<Point>, String> {
         "pareto",
     ];
     let idx: Vec<usize> = names.iter().map(|n| col(n)).collect::<Result<_, _>>()?;
+    // Added with the ray-traced shadow knob: CSVs written before it have map shadows only.
+    let raytraced_col = col("raytraced_shadows").ok();
     let mut points = Vec::new();
     for (n, line) in lines {
         if line.trim().is_empty() {
@@ -151,6 +154,7 @@ pub fn from_csv(text: &str) -> Result<Vec<Point>, String> {
                 shadow_samples: float(6)? as u32,
                 shadow_blur: float(7)?,
                 shadow_map_size: float(8)? as u32,
+                raytraced_shadows: raytraced_col.and_then(|c| f.get(c)) == Some(&"1"),
                 filter_width: float(9)?,
                 env_blur: float(10)?,
                 bucket_size: float(11)? as u32,

@@ -116,18 +116,43 @@ impl Scene {
 /// Depth pass from the light (the chapter's settings, section 9.6.3), `MakeShadow`, then the
 /// beauty pass looking straight down at the plane. The disk is left out of the beauty pass:
 /// only its shadow is measured, and from above it would hide the shadow.
+///
+/// With [`Settings::raytraced_shadows`] there is no depth pass and no `MakeShadow` (so the
+/// time is what a ray-traced user pays), the light's `shadowname` is "raytrace", and the disk
+/// is in the beauty pass, where shadow rays can hit it, but hidden from the camera by the near
+/// clipping plane (the renderer has no camera-visibility attribute; the ray-traced scene keeps
+/// every shadow-casting primitive, clipped or not).
 fn disk_shadow_rib(s: &Settings, r: u32, common: &str) -> String {
     let (hl, hd, rd, w) = (LIGHT_HEIGHT, DISK_HEIGHT, DISK_RADIUS, PLANE_WINDOW);
+    let disk = format!(
+        "AttributeBegin\nTranslate 0 {hd} 0\nRotate 90 1 0 0\nDisk 0 {rd} 360\nAttributeEnd\n"
+    );
+    let plane = "Polygon \"P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]";
+    if s.raytraced_shadows {
+        // The camera is 10 above the plane: the disk is 10 − hd away, the plane 10.
+        let near = 10.0 - 0.5 * hd;
+        return format!(
+            "Format {r} {r} 1\nScreenWindow -{w} {w} -{w} {w}\nProjection \"orthographic\"\n\
+             Clipping {near} 100\nPixelFilter \"box\" 1 1\n{common}Rotate -90 1 0 0\nTranslate 0 -10 0\n\
+             WorldBegin\n\
+             LightSource \"shadowspot\" 1 \"intensity\" [{i}] \"from\" [0 {hl} 0] \"to\" [0 0 0] \
+             \"coneangle\" [{cone}] \"conedeltaangle\" [0.1] \"shadowname\" [\"raytrace\"] \
+             \"samples\" [{n}] \"blur\" [{b}]\n\
+             {attrs}Surface \"matte\"\n{disk}{plane}\nWorldEnd\n",
+            i = closed_form::SPOT_INTENSITY,
+            cone = closed_form::SPOT_CONE,
+            n = s.shadow_samples,
+            b = s.shadow_blur,
+            attrs = world_attributes(s),
+        );
+    }
     // The map's field of view holds the visible plane square with a margin.
     let fov = 2.0 * (1.2 * w / hl).atan().to_degrees();
-    let plane = "Polygon \"P\" [-3 0 -3  3 0 -3  3 0 3  -3 0 3]";
     format!(
         "FrameBegin 1\nFormat {m} {m} 1\nPixelSamples 1 1\nPixelFilter \"box\" 1 1\n\
          Hider \"hidden\" \"jitter\" [0]\nDisplay \"depth.z\" \"zfile\" \"z\"\nShadingRate 4\n\
          Projection \"perspective\" \"fov\" [{fov}]\nRotate -90 1 0 0\nTranslate 0 -{hl} 0\n\
-         WorldBegin\nSurface \"null\"\n\
-         AttributeBegin\nTranslate 0 {hd} 0\nRotate 90 1 0 0\nDisk 0 {rd} 360\nAttributeEnd\n\
-         {plane}\nWorldEnd\nFrameEnd\n\
+         WorldBegin\nSurface \"null\"\n{disk}{plane}\nWorldEnd\nFrameEnd\n\
          MakeShadow \"depth.z\" \"shadow.sm\"\n\
          FrameBegin 2\nFormat {r} {r} 1\nScreenWindow -{w} {w} -{w} {w}\nProjection \"orthographic\"\n\
          PixelFilter \"box\" 1 1\n{common}Rotate -90 1 0 0\nTranslate 0 -10 0\nWorldBegin\n\
@@ -213,5 +238,43 @@ mod tests {
         assert!(rib.find("Translate").unwrap() < rib.find("out.tif").unwrap());
         assert!(rib.ends_with("Sphere 1 -1 1 360\nWorldEnd\n"));
         assert!(gallery_rib("Sphere 1 -1 1 360\n", 1.0, &s, "").is_none());
+    }
+
+    fn disk_scene() -> Scene {
+        Scene {
+            name: "disk_shadow".into(),
+            kind: SceneKind::DiskShadow,
+            res: 32,
+        }
+    }
+
+    #[test]
+    fn raytraced_disk_shadow_has_no_depth_pass_and_traces_the_disk() {
+        let d = Settings::defaults(256, 2);
+        let map = disk_scene().rib(&d).unwrap();
+        assert!(map.contains("MakeShadow") && map.contains("zfile"), "{map}");
+        assert!(map.contains("[\"shadow.sm\"]") && !map.contains("raytrace"));
+        let s = d.with(crate::knob::Knob::RaytracedShadowSamples, 4.0);
+        let rt = disk_scene().rib(&s).unwrap();
+        assert!(
+            !rt.contains("MakeShadow") && !rt.contains("zfile") && !rt.contains("FrameBegin"),
+            "{rt}"
+        );
+        assert!(rt.contains("\"shadowname\" [\"raytrace\"] \"samples\" [4] \"blur\" [0.01]"));
+        // The disk is in the world (shadow rays need it), between the near plane and the
+        // light, and the plane beyond the near plane.
+        let world = &rt[rt.find("WorldBegin").unwrap()..];
+        assert!(world.contains(&format!("Disk 0 {DISK_RADIUS} 360")), "{rt}");
+        let near: f64 = rt
+            .lines()
+            .find_map(|l| l.strip_prefix("Clipping "))
+            .and_then(|l| l.split_whitespace().next())
+            .and_then(|x| x.parse().ok())
+            .expect("Clipping line");
+        let camera_height = 10.0;
+        assert!(
+            camera_height - DISK_HEIGHT < near && near < camera_height,
+            "{near}"
+        );
     }
 }

@@ -43,6 +43,7 @@ fn scenes() -> Vec<(String, Vec<Point>)> {
     let mut b = vec![
         point("b", Knob::ShadowSamples, 1.0, 1.0, 0.1),
         point("b", Knob::ShadowSamples, 64.0, 3.0, 0.01),
+        point("b", Knob::RaytracedShadowBlur, 0.0, 0.5, 0.02),
     ];
     mark_pareto(&mut b);
     vec![("a".into(), a), ("b".into(), b)]
@@ -151,4 +152,31 @@ fn csv_reads_back_what_it_wrote() {
         assert!(b.vs_closed.is_none());
     }
     assert!(bench::csv::from_csv("scene,knob\na,b\n").is_err());
+    assert!(back.iter().any(|p| p.settings.raytraced_shadows));
+}
+
+#[test]
+fn csv_without_the_raytraced_column_reads_as_map_shadows() {
+    // A CSV written before the ray-traced knobs: drop the column from header and rows.
+    let all: Vec<Point> = scenes().into_iter().flat_map(|(_, p)| p).collect();
+    let text = bench::csv::to_csv(&all);
+    let col = text
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|h| h == "raytraced_shadows")
+        .expect("raytraced_shadows column");
+    let old: String = text
+        .lines()
+        .map(|l| {
+            let mut f: Vec<&str> = l.split(',').collect();
+            f.remove(col);
+            f.join(",") + "\n"
+        })
+        .collect();
+    let back = bench::csv::from_csv(&old).unwrap();
+    assert_eq!(back.len(), all.len());
+    assert!(back.iter().all(|p| !p.settings.raytraced_shadows));
+    assert_eq!(back[0].settings, all[0].settings);
 }
