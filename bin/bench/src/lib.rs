@@ -10,7 +10,6 @@ pub mod font;
 pub mod knob;
 pub mod measure;
 pub mod metrics;
-pub mod output;
 pub mod pareto;
 pub mod plot;
 pub mod scene;

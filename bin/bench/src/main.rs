@@ -6,10 +6,10 @@
 #![forbid(unsafe_code)]
 
 use bench::knob::Settings;
-use bench::output::write_atomic;
 use bench::scene::{Scene, SceneKind};
 use bench::sweep::{sweep_scene, SweepConfig};
 use clap::Parser;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -162,7 +162,15 @@ fn write_outputs(
     ];
     for (name, bytes) in files {
         let path = out.join(name);
-        write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        // Temporary sibling + rename (the displays' writer): a reader never sees half a file.
+        illume_imageio::write_atomically(&path, |w| {
+            w.write_all(&bytes)
+                .map_err(|source| illume_imageio::ImageError::Io {
+                    path: path.display().to_string(),
+                    source,
+                })
+        })
+        .map_err(|e| e.to_string())?;
         eprintln!("bench: wrote {}", path.display());
     }
     Ok(())
