@@ -148,24 +148,26 @@ pub fn up_to_date(output: &Path, inputs: &[&Path]) -> bool {
     inputs.iter().all(|i| modified(i).is_some_and(|t| t <= out))
 }
 
-/// Writes `bytes` to `path` through a temporary name in the same directory.
+/// Writes `bytes` to `path` through a temporary name in the same directory (the displays'
+/// writer, `illume_imageio::write_atomically`), creating the directory first.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), FarmError> {
+    use std::io::Write;
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).map_err(io_error(dir))?;
     }
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.farm-tmp-{}", std::process::id()));
-    std::fs::write(&tmp, bytes).map_err(io_error(&tmp))?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        FarmError::Io {
-            path: path.display().to_string(),
-            source: e,
-        }
-    })
+    let io = |source| illume_imageio::ImageError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    illume_imageio::write_atomically(path, |w| w.write_all(bytes).map_err(io)).map_err(
+        |e| match e {
+            illume_imageio::ImageError::Io { path, source } => FarmError::Io { path, source },
+            other => FarmError::Io {
+                path: path.display().to_string(),
+                source: std::io::Error::other(other.to_string()),
+            },
+        },
+    )
 }
 
 #[cfg(test)]
