@@ -11,6 +11,8 @@
 
 pub mod ast;
 pub mod diagnostic;
+pub mod lexer;
+pub mod preprocess;
 pub mod span;
 pub mod types;
 
