@@ -12,6 +12,7 @@
 pub mod ast;
 pub mod diagnostic;
 pub mod lexer;
+pub mod parser;
 pub mod preprocess;
 pub mod span;
 pub mod types;
