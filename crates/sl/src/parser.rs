@@ -869,7 +869,13 @@ impl<'a> Parser<'a> {
                 self.bump();
                 Ok(Expr::new(ExprKind::Str(s.clone()), t.span))
             }
-            TokKind::Ident(w) if !is_reserved(w) => {
+            // `surface ("Kd", x)` and `displacement (…)` are message-passing calls even though
+            // the words also introduce shaders.
+            TokKind::Ident(w)
+                if !is_reserved(w)
+                    || (matches!(w.as_str(), "surface" | "displacement")
+                        && self.peek_at(1).is(Punct::LParen)) =>
+            {
                 self.bump();
                 if self.at(Punct::LParen) {
                     return self.call(w.clone(), t.span);
