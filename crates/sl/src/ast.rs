@@ -181,7 +181,7 @@ pub struct VarInfo {
     /// `uniform` / `varying` as written, if written.
     pub declared: Option<Detail>,
     /// The detail the spec gives it: `declared` if written, otherwise uniform for shader
-    /// parameters and varying for locals and function parameters (a function parameter without
+    /// parameters and string locals, varying for other locals and function parameters (a function parameter without
     /// a qualifier takes its argument's detail at each call; `Varying` is the safe bound).
     pub detail: Detail,
     /// Inferred detail: equals `detail`, except that an unqualified local is refined to

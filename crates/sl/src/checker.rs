@@ -456,7 +456,13 @@ impl Checker<'_> {
                 let what = format!("initial value of '{}'", v.name);
                 self.coerce(init, ty, &what);
             }
-            let detail = d.detail.unwrap_or(Detail::Varying);
+            // RI 3.2 has no varying strings: an unqualified string local is uniform.
+            let default = if d.base == BaseType::String {
+                Detail::Uniform
+            } else {
+                Detail::Varying
+            };
+            let detail = d.detail.unwrap_or(default);
             let id = self.declare(&v.name, v.span, ty, VarKind::Local, d.detail, detail);
             v.var = Some(VarRef::Slot(id));
         }
