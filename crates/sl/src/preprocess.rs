@@ -27,7 +27,7 @@ const MAX_INCLUDE_DEPTH: usize = 40;
 const MAX_EXPANSION_DEPTH: usize = 200;
 /// Limit on tokens one macro expansion may produce, against exponential macro bombs
 /// (`#define A B B`, `#define B C C`, …).
-const MAX_EXPANSION_TOKENS: usize = 1 << 20;
+const MAX_EXPANSION_TOKENS: usize = 1 << 18;
 
 /// Preprocessor settings (what `slc -I dir -D NAME=value` sets).
 #[derive(Debug, Clone, Default)]

@@ -520,3 +520,18 @@ fn user_functions_shadow_builtins_of_the_same_name() {
     let (_, c) = calls(&p, "diffuse")[0];
     assert_eq!(c.callee, Some(Callee::User(FuncId(0))));
 }
+
+#[test]
+fn transform_keeps_the_geometric_type_of_its_argument() {
+    let p = compile(
+        "surface s() { point a = transform(\"world\", P); normal b = transform(\"world\", N); vector c = transform(\"object\", \"world\", I); }",
+    );
+    let rets: Vec<Type> = calls(&p, "transform").iter().map(|(e, _)| e.ty).collect();
+    assert_eq!(rets, vec![Type::POINT, Type::NORMAL, Type::VECTOR]);
+    assert!(
+        !all_exprs(&p)
+            .iter()
+            .any(|e| matches!(e.kind, ExprKind::Cast { .. })),
+        "no conversion was needed"
+    );
+}
