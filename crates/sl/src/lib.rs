@@ -27,6 +27,7 @@ pub mod builtins;
 pub mod checker;
 mod detail;
 pub mod diagnostic;
+mod error;
 pub mod lexer;
 pub mod parser;
 pub mod preprocess;
@@ -34,6 +35,7 @@ pub mod span;
 pub mod types;
 
 pub use diagnostic::{Diagnostic, Severity};
+pub use error::SlError;
 pub use preprocess::PpOptions;
 pub use span::{FileId, Loc, SourceMap, Span};
 
@@ -62,6 +64,28 @@ impl Compiled {
             .iter()
             .map(|d| format!("{}\n", d.render(&self.sources)))
             .collect()
+    }
+
+    /// The checked program, or [`SlError::Source`] when there were errors. Warnings are
+    /// dropped; read [`Compiled::diagnostics`] first to show them.
+    pub fn into_program(self) -> Result<ast::Program, SlError> {
+        if !self.has_errors() {
+            return Ok(self.program);
+        }
+        let errors = self
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .count();
+        Err(SlError::Source {
+            file: self
+                .sources
+                .files
+                .first()
+                .map_or_else(String::new, |f| f.path.display().to_string()),
+            errors,
+            rendered: self.render_diagnostics(),
+        })
     }
 }
 

@@ -176,3 +176,20 @@ fn several_syntax_errors_are_reported_in_one_run() {
         ]
     );
 }
+
+#[test]
+fn into_program_turns_errors_into_the_crate_error() {
+    let err = compile_str(
+        "e.sl",
+        "surface s() { Ci = a; Oi = b; }",
+        &PpOptions::default(),
+    )
+    .into_program()
+    .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "2 error(s) compiling e.sl:\ne.sl:1:20: error: undeclared variable 'a'\ne.sl:1:28: error: undeclared variable 'b'\n"
+    );
+    let ok = compile_str("e.sl", "surface s() { Ci = Cs; }", &PpOptions::default()).into_program();
+    assert_eq!(ok.unwrap().shaders[0].name, "s");
+}
