@@ -29,10 +29,21 @@ pub fn infer(prog: &mut Program, diags: &mut Vec<Diagnostic>) {
         .iter()
         .map(|f| f.params.iter().map(|p| p.output).collect())
         .collect();
+    let uniform_params: Vec<Vec<bool>> = prog
+        .functions
+        .iter()
+        .map(|f| {
+            f.params
+                .iter()
+                .map(|p| p.detail == Some(Detail::Uniform))
+                .collect()
+        })
+        .collect();
     let ctx = Ctx {
         pinned: &pinned,
         reads: &reads,
         user_outputs: &outs,
+        uniform_params: &uniform_params,
     };
     for i in 0..prog.shaders.len() {
         let owner = Owner::Shader(ShaderId(i as u32));
@@ -64,6 +75,8 @@ struct Ctx<'a> {
     reads: &'a [bool],
     /// Per user function: which parameters are `output`.
     user_outputs: &'a [Vec<bool>],
+    /// Per user function: which parameters are declared `uniform`.
+    uniform_params: &'a [Vec<bool>],
 }
 
 /// Parameter defaults are evaluated once per shader instance: annotate them too.
@@ -81,6 +94,7 @@ fn annotate_defaults(
         done,
         reads: ctx.reads,
         user_outputs: ctx.user_outputs,
+        uniform_params: ctx.uniform_params,
         changed: false,
         report: None,
         varying_loops: HashSet::new(),
@@ -164,6 +178,7 @@ fn run(
         done,
         reads: ctx.reads,
         user_outputs: ctx.user_outputs,
+        uniform_params: ctx.uniform_params,
         changed: true,
         report: None,
         varying_loops: HashSet::new(),
@@ -199,6 +214,8 @@ struct Walker<'a, 'r> {
     reads: &'a [bool],
     /// Per user function, which parameters are `output`.
     user_outputs: &'a [Vec<bool>],
+    /// Per user function, which parameters are declared `uniform`.
+    uniform_params: &'a [Vec<bool>],
     changed: bool,
     /// `Some` on the final walk: where to report declared-uniform violations.
     report: Option<&'r mut Vec<Diagnostic>>,
@@ -458,9 +475,29 @@ impl Walker<'_, '_> {
             None => Detail::Varying,
         };
         // Inputs decide the call's detail; output arguments receive it.
+        let uniform_params: Vec<bool> = match &call.callee {
+            Some(Callee::User(id)) => self
+                .uniform_params
+                .get(id.0 as usize)
+                .cloned()
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        };
         let mut out_targets = Vec::new();
         for (i, a) in call.args.iter_mut().enumerate() {
             let ad = self.expr(a, vc);
+            if ad == Detail::Varying && uniform_params.get(i).copied().unwrap_or(false) {
+                if let Some(rep) = self.report.as_deref_mut() {
+                    rep.push(Diagnostic::error(
+                        a.span,
+                        format!(
+                            "argument {} of '{}' must be uniform (the parameter is declared uniform), found a varying value",
+                            i + 1,
+                            call.name
+                        ),
+                    ));
+                }
+            }
             if outputs.get(i).copied().unwrap_or(false) {
                 out_targets.push(i);
             } else {

@@ -193,3 +193,11 @@ fn into_program_turns_errors_into_the_crate_error() {
     let ok = compile_str("e.sl", "surface s() { Ci = Cs; }", &PpOptions::default()).into_program();
     assert_eq!(ok.unwrap().shaders[0].name, "s");
 }
+
+#[test]
+fn varying_argument_for_a_uniform_parameter() {
+    assert_eq!(
+        one("float f(uniform float k) { return k; }\nsurface s() { Ci = f(1) + f(s); }"),
+        "e.sl:2:29: error: argument 1 of 'f' must be uniform (the parameter is declared uniform), found a varying value"
+    );
+}
