@@ -186,9 +186,11 @@ fn run(
         diverged: false,
         fn_diverged: false,
     };
-    // Each round can only raise details, and there are finitely many; the bound is a guard.
+    // Each round that changes something raises at least one slot, loop or the body to
+    // varying, and nothing is ever lowered, so at most `slots + loops + 1` rounds change
+    // anything; the bound only guards against a bug looping forever.
     let mut rounds = 0;
-    while w.changed && rounds < 4 * vars.len() + 8 {
+    while w.changed && rounds <= vars.len() + w.loop_counter + 2 {
         w.changed = false;
         w.loop_counter = 0;
         let start = w.fn_diverged;

@@ -535,3 +535,32 @@ fn transform_keeps_the_geometric_type_of_its_argument() {
         "no conversion was needed"
     );
 }
+
+#[test]
+fn inference_reaches_a_fixpoint_through_long_backward_chains() {
+    // a0 = a1; a1 = a2; …; a29 = s: each walk makes one more link varying.
+    let mut body = String::new();
+    for k in 0..30 {
+        body.push_str(&format!("float a{k} = 0; "));
+    }
+    for k in 0..29 {
+        body.push_str(&format!("a{k} = a{}; ", k + 1));
+    }
+    body.push_str(
+        "a29 = s; float untouched = a0 * 0; uniform float kept = 1; Ci = a0 + untouched + kept;",
+    );
+    let p = compile(&format!("surface s() {{ {body} }}"));
+    for k in 0..30 {
+        assert_eq!(
+            var(&p, S0, &format!("a{k}")).inferred,
+            Detail::Varying,
+            "a{k}"
+        );
+    }
+    assert_eq!(
+        var(&p, S0, "untouched").inferred,
+        Detail::Varying,
+        "reads a varying value"
+    );
+    assert_eq!(var(&p, S0, "kept").inferred, Detail::Uniform);
+}
