@@ -161,6 +161,19 @@ fn every_chapter_listing_compiles() {
     assert!(failures.is_empty(), "{failures}");
 }
 
+mod common;
+
+#[test]
+fn checked_listings_keep_the_ast_promises() {
+    let Some(text) = reference_text() else { return };
+    let listings = extract_listings(&text);
+    for &n in listings.keys() {
+        let out = compile_listing(&listings, n, true);
+        let bad = common::invariant_violations(&out.program);
+        assert!(bad.is_empty(), "Listing 9.{n}: {bad:#?}");
+    }
+}
+
 #[test]
 fn the_errata_are_needed_where_they_say() {
     let Some(text) = reference_text() else { return };

@@ -5,129 +5,13 @@ use illume_sl::ast::*;
 use illume_sl::types::{BaseType, Detail, Type};
 use illume_sl::{compile_str, PpOptions};
 
+mod common;
+use common::all_exprs;
+
 fn compile(src: &str) -> Program {
     let out = compile_str("t.sl", src, &PpOptions::default());
     assert!(!out.has_errors(), "{}", out.render_diagnostics());
     out.program
-}
-
-/// Every expression of the program, depth first.
-fn all_exprs(p: &Program) -> Vec<&Expr> {
-    let mut out = Vec::new();
-    for s in &p.shaders {
-        for q in &s.params {
-            if let Some(d) = &q.default {
-                expr(d, &mut out);
-            }
-        }
-        block(&s.body, &mut out);
-    }
-    for f in &p.functions {
-        block(&f.body, &mut out);
-    }
-    out
-}
-
-fn block<'a>(b: &'a Block, out: &mut Vec<&'a Expr>) {
-    for s in &b.stmts {
-        stmt(s, out);
-    }
-}
-
-fn stmt<'a>(s: &'a Stmt, out: &mut Vec<&'a Expr>) {
-    match &s.kind {
-        StmtKind::Decl(d) => d
-            .vars
-            .iter()
-            .filter_map(|v| v.init.as_ref())
-            .for_each(|e| expr(e, out)),
-        StmtKind::Expr(e) => expr(e, out),
-        StmtKind::Block(b) => block(b, out),
-        StmtKind::If {
-            cond,
-            then,
-            otherwise,
-        } => {
-            expr(cond, out);
-            stmt(then, out);
-            if let Some(o) = otherwise {
-                stmt(o, out);
-            }
-        }
-        StmtKind::While { cond, body } => {
-            expr(cond, out);
-            stmt(body, out);
-        }
-        StmtKind::For {
-            init,
-            cond,
-            step,
-            body,
-        } => {
-            for e in [init, cond, step].into_iter().flatten() {
-                expr(e, out);
-            }
-            stmt(body, out);
-        }
-        StmtKind::Return(Some(e)) => expr(e, out),
-        StmtKind::Illuminance(i) => {
-            expr(&i.position, out);
-            stmt(&i.body, out);
-        }
-        StmtKind::Illuminate(i) => {
-            expr(&i.position, out);
-            stmt(&i.body, out);
-        }
-        StmtKind::Solar(s) => stmt(&s.body, out),
-        _ => {}
-    }
-}
-
-fn expr<'a>(e: &'a Expr, out: &mut Vec<&'a Expr>) {
-    out.push(e);
-    match &e.kind {
-        ExprKind::Tuple(v) | ExprKind::ArrayInit(v) => v.iter().for_each(|x| expr(x, out)),
-        ExprKind::Cast { space, expr: x, .. } => {
-            if let Some(s) = space {
-                expr(s, out);
-            }
-            expr(x, out);
-        }
-        ExprKind::Promote(x) | ExprKind::Unary { expr: x, .. } => expr(x, out),
-        ExprKind::Binary { lhs, rhs, .. } => {
-            expr(lhs, out);
-            expr(rhs, out);
-        }
-        ExprKind::Ternary {
-            cond,
-            then,
-            otherwise,
-        } => {
-            expr(cond, out);
-            expr(then, out);
-            expr(otherwise, out);
-        }
-        ExprKind::Assign { target, value, .. } => {
-            if let Some(i) = &target.index {
-                expr(i, out);
-            }
-            expr(value, out);
-        }
-        ExprKind::Index { array, index } => {
-            expr(array, out);
-            expr(index, out);
-        }
-        ExprKind::Call(c) => c.args.iter().for_each(|x| expr(x, out)),
-        ExprKind::Texture(t) => {
-            expr(&t.map, out);
-            t.coords.iter().for_each(|x| expr(x, out));
-            t.params.iter().for_each(|p| {
-                expr(&p.name, out);
-                expr(&p.value, out);
-            });
-        }
-        _ => {}
-    }
 }
 
 /// The calls named `name`, in order.
