@@ -25,6 +25,9 @@
 //! PRMan and Aqsis do) rather than RI 3.2's point-only form, so `transform ("world", N)` does
 //! not silently turn a normal into a point; `vtransform`/`ntransform` remain.
 //!
+//! `arraylength` (PRMan's, not RI 3.2's) is included because functions taking `float a[]`
+//! need it to loop over their argument.
+//!
 //! Built-ins that are inherently varying (they read the grid or the lights, e.g. `diffuse`,
 //! `Du`, `noise` of a varying point is varying anyway) are listed in [`is_inherently_varying`].
 
@@ -201,6 +204,7 @@ f rendererinfo(s,oA)
 T Du(T)
 T Dv(T)
 T Deriv(T,f)
+f arraylength(A[])
 ";
 
 /// Names whose result varies over the grid whatever their arguments: they read the lights,

@@ -448,3 +448,21 @@ fn inference_reaches_a_fixpoint_through_long_backward_chains() {
     );
     assert_eq!(var(&p, S0, "kept").inferred, Detail::Uniform);
 }
+
+#[test]
+fn open_array_parameters_take_any_length() {
+    let p = compile(
+        "float sum(float a[]) { float t = 0, i; for (i = 0; i < arraylength(a); i += 1) t += a[i]; return t; }
+         surface s() { float k[3] = {1, 2, 3}; float j[5] = {1, 2, 3, 4, 5}; Ci = sum(k) + sum(j); }",
+    );
+    let sums = calls(&p, "sum");
+    assert_eq!(sums.len(), 2);
+    assert!(sums
+        .iter()
+        .all(|(_, c)| c.callee == Some(Callee::User(FuncId(0)))));
+    let (_, al) = calls(&p, "arraylength")[0];
+    assert_eq!(
+        builtin(al).sig.params[0].ty.array,
+        Some(illume_sl::types::ArrayLen::Open)
+    );
+}
