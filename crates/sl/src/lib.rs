@@ -97,9 +97,12 @@ pub fn compile_str(name: &str, text: &str, opts: &PpOptions) -> Compiled {
     compile_registered(sources, id, opts)
 }
 
-/// Reads and compiles a file. An unreadable file is reported as a diagnostic, not a panic.
+/// Reads and compiles a file (bytes that are not UTF-8 read as U+FFFD). An unreadable file is
+/// reported as a diagnostic, not a panic.
 pub fn compile_file(path: &Path, opts: &PpOptions) -> Compiled {
-    match std::fs::read_to_string(path) {
+    // Lossy: old shaders carry Latin-1 bytes in comments (author names, ©), which must not
+    // stop compilation; such bytes can only matter inside string literals.
+    match std::fs::read(path).map(|b| String::from_utf8_lossy(&b).into_owned()) {
         Ok(text) => {
             let mut sources = SourceMap::new();
             let id = sources.add(path, text);

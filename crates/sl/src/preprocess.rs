@@ -325,7 +325,8 @@ impl Pp<'_> {
         }
         candidates.extend(self.opts.include_dirs.iter().map(|d| d.join(&name)));
         for path in candidates {
-            if let Ok(text) = std::fs::read_to_string(&path) {
+            if let Ok(text) = std::fs::read(&path).map(|b| String::from_utf8_lossy(&b).into_owned())
+            {
                 let id = self.map.add(path, text);
                 self.run_file(id, depth + 1);
                 return;
