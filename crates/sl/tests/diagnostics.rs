@@ -201,3 +201,12 @@ fn varying_argument_for_a_uniform_parameter() {
         "e.sl:2:29: error: argument 1 of 'f' must be uniform (the parameter is declared uniform), found a varying value"
     );
 }
+
+#[test]
+fn duplicate_function_definitions_but_overloads_are_fine() {
+    assert_eq!(
+        one("float f(float x) { return x; }\nfloat f(float y) { return y; }\n"),
+        "e.sl:2:7: error: function 'f' is already defined with these parameter types"
+    );
+    assert!(diags("float f(float x) { return x; }\ncolor f(color y) { return y; }\nsurface s() { Ci = f(Cs) * f(1); }\n").is_empty());
+}
