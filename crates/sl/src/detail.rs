@@ -3,8 +3,8 @@
 //! An expression is varying when anything it reads is varying. A local declared without
 //! `uniform`/`varying` starts out *optimistically uniform* and becomes varying when a varying
 //! value is assigned to it or when it is assigned under varying control flow (a varying `if`
-//! or loop condition, a loop left by a varying `break`/`continue`, anything after a varying
-//! `return`, and every `illuminance`/`illuminate`/`solar` body). Because one local's detail
+//! or loop condition, a loop left by a varying `break`/`continue`/`return`, the statements
+//! after a varying `return`, and every `illuminance`/`illuminate`/`solar` body). Because one local's detail
 //! feeds another's, the walk repeats until nothing changes (details only ever rise from
 //! uniform to varying, so this terminates). A final walk writes [`Expr::detail`] and
 //! [`VarInfo::inferred`] and reports assignments that break a *declared* uniform.
@@ -193,15 +193,15 @@ fn run(
     while w.changed && rounds <= vars.len() + w.loop_counter + 2 {
         w.changed = false;
         w.loop_counter = 0;
-        let start = w.fn_diverged;
-        w.block(body, start);
+        w.fn_diverged = false;
+        w.block(body, false);
         rounds += 1;
     }
     let mut report = Vec::new();
     w.report = Some(&mut report);
     w.loop_counter = 0;
-    let start = w.fn_diverged;
-    w.block(body, start);
+    w.fn_diverged = false;
+    w.block(body, false);
     let details = w.details.clone();
     diags.extend(report);
     details
@@ -227,7 +227,8 @@ struct Walker<'a, 'r> {
     loop_counter: usize,
     /// A `break`/`continue` under varying control was seen in the current loop body.
     diverged: bool,
-    /// A `return` under varying control was seen: the whole body is varying control.
+    /// A `return` under varying control was seen earlier in this walk: the statements after
+    /// it are varying control.
     fn_diverged: bool,
 }
 
@@ -340,9 +341,11 @@ impl Walker<'_, '_> {
                 if let Some(v) = v {
                     self.expr(v, vc);
                 }
-                if vc && !self.fn_diverged {
+                // Points that returned stop running: everything after this statement (and, in
+                // a loop, every later iteration) runs under a varying mask.
+                if vc {
                     self.fn_diverged = true;
-                    self.changed = true;
+                    self.diverged = true;
                 }
             }
             StmtKind::Illuminance(il) => {

@@ -466,3 +466,29 @@ fn open_array_parameters_take_any_length() {
         Some(illume_sl::types::ArrayLen::Open)
     );
 }
+
+#[test]
+fn a_varying_return_makes_only_later_statements_varying_control() {
+    let p = compile(
+        "float f(float x) {
+            uniform float before = 1;   /* fine: assigned before any point returned */
+            float early = 2;
+            if (x > 0) return before;
+            float late = 3;             /* assigned only for the points still running */
+            return early + late;
+        }",
+    );
+    let o = Owner::Function(FuncId(0));
+    assert_eq!(var(&p, o, "early").inferred, Detail::Uniform);
+    assert_eq!(var(&p, o, "late").inferred, Detail::Varying);
+    // A declared-uniform assignment after the varying return is an error.
+    let out = compile_str(
+        "r.sl",
+        "float f(float x) { uniform float u = 0; if (x > 0) return 1; u = 2; return u; }",
+        &PpOptions::default(),
+    );
+    assert_eq!(
+        out.render_diagnostics(),
+        "r.sl:1:62: error: cannot assign to uniform variable 'u' under varying control flow (a varying condition, loop or lighting construct)\n"
+    );
+}
