@@ -492,3 +492,26 @@ fn a_varying_return_makes_only_later_statements_varying_control() {
         "r.sl:1:62: error: cannot assign to uniform variable 'u' under varying control flow (a varying condition, loop or lighting construct)\n"
     );
 }
+
+#[test]
+fn functions_nested_in_a_shader_reach_its_parameters_through_extern() {
+    let p = compile(
+        "surface s(float Kd = 0.5;) { color shade(normal n) { extern float Kd; return Kd * diffuse(n); } Ci = shade(normalize(N)); }",
+    );
+    let f = &p.functions[0];
+    assert_eq!(f.parent, Some(S0));
+    let StmtKind::Decl(d) = &f.body.stmts[0].kind else {
+        panic!()
+    };
+    assert_eq!(
+        d.vars[0].var,
+        Some(VarRef::Outer {
+            owner: S0,
+            var: VarId(0)
+        })
+    );
+    assert_eq!(
+        var(&p, S0, "Kd").kind,
+        VarKind::ShaderParam { output: false }
+    );
+}
