@@ -37,7 +37,6 @@ use crate::noise::noise;
 use crate::parameters::{ParamValue, ShaderParams};
 use crate::shadingenv::ShadingEnv;
 use crate::shadinggrid::ShadingGrid;
-use glam::Vec3;
 use illume_rib::Param;
 
 /// A bound displacement shader.
@@ -160,6 +159,7 @@ fn dented(d: &Displacement, grid: &ShadingGrid, env: &ShadingEnv) -> Vec<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
     use illume_rib::Value;
 
     fn param(name: &str, v: f32) -> Param {
