@@ -217,18 +217,19 @@ fn displacementbound_coordinate_systems_scale_the_radius() {
     assert_eq!(unknown[0].severity, Severity::Warning);
 }
 
-/// The same bound behaves by its space: a sphere scaled ×2 displaced 0.25 (camera units) is
-/// covered by "sphere" [0.15] in object space (0.3 in camera space: no warning) but not in
-/// world space (0.15: one warning), and both images are the same, the disc π(2.25)².
+/// The same bound behaves by its space: a sphere scaled ×2 displaced 0.6 (camera units) is
+/// covered by "sphere" [0.3] in object space (0.6 in camera space: no warning) but not in
+/// world space (0.3: one warning, and without re-bucketing the disc would be clipped by 7
+/// pixels at 4-pixel buckets), and both images are the same, the disc π·2.6² within 1%.
 #[test]
 fn a_world_bound_on_a_scaled_object_is_not_scaled() {
     let scene = |space: &str| {
         format!(
-            "Format {RES} {RES} 1\nScreenWindow -3 3 -3 3\nPixelSamples 4 4\n\
-             PixelFilter \"box\" 1 1\nOption \"limits\" \"bucketsize\" [8 8]\nWorldBegin\n\
+            "Format 160 160 1\nScreenWindow -3.2 3.2 -3.2 3.2\nPixelSamples 4 4\n\
+             PixelFilter \"box\" 1 1\nOption \"limits\" \"bucketsize\" [4 4]\nWorldBegin\n\
              Translate 0 0 10\nScale 2 2 2\n\
-             Attribute \"displacementbound\" \"sphere\" [0.15] \"coordinatesystem\" [\"{space}\"]\n\
-             Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.25]\n\
+             Attribute \"displacementbound\" \"sphere\" [0.3] \"coordinatesystem\" [\"{space}\"]\n\
+             Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.6]\n\
              Sphere 1 -1 1 360\nWorldEnd\n"
         )
     };
@@ -236,13 +237,13 @@ fn a_world_bound_on_a_scaled_object_is_not_scaled() {
     let (world, wd) = render_rib(&scene("world"));
     assert!(bound_warnings(&od).is_empty(), "{od:?}");
     assert_eq!(bound_warnings(&wd).len(), 1, "{wd:?}");
-    let expected = std::f64::consts::PI * 2.25f64.powi(2);
-    let area = covered_area(&object, 6.0 / f64::from(RES));
+    let expected = std::f64::consts::PI * 2.6f64.powi(2);
+    let area = covered_area(&object, 6.4 / 160.0);
     assert!(
         (area - expected).abs() / expected < 0.01,
         "area {area} vs {expected}"
     );
-    assert!(object.rgba == world.rgba);
+    assert!(object.rgba == world.rgba, "area {} with the world bound", covered_area(&world, 0.04));
 }
 
 /// The shared corpus (`../shared/corpus` or `$ILLUME_CORPUS`).
