@@ -243,7 +243,11 @@ fn a_world_bound_on_a_scaled_object_is_not_scaled() {
         (area - expected).abs() / expected < 0.01,
         "area {area} vs {expected}"
     );
-    assert!(object.rgba == world.rgba, "area {} with the world bound", covered_area(&world, 0.04));
+    assert!(
+        object.rgba == world.rgba,
+        "area {} with the world bound",
+        covered_area(&world, 0.04)
+    );
 }
 
 /// The shared corpus (`../shared/corpus` or `$ILLUME_CORPUS`).
@@ -326,4 +330,38 @@ fn aqsis_disp_test_warns_once_and_renders_undisplaced() {
     assert_eq!(stderr.matches("brickbump").count(), 1, "{stderr}");
     assert!(dir.join("disp_test.tif").is_file());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Ray-traced shadow casters are displaced too. A sphere of radius 1 pushed out by 0.5 (so
+/// 1.5) at z = 5 under a distant light along (1, 0, 1) shadows the plane z = 10 in an ellipse
+/// of semi-axes 1.5 and 1.5·√2: area π·1.5²·√2 ≈ 10.0 (the undisplaced caster would give
+/// 4.4). Metric: pixels on the shadow's side of the frame darker than half the lit plane,
+/// times the pixel area, within 3% (the ellipse's edge pixels and the caster's tessellation).
+#[test]
+fn displaced_casters_cast_displaced_shadows() {
+    let rib = "Format 200 100 1\nScreenWindow -5 5 -2.5 2.5\nPixelSamples 2 2\n\
+               WorldBegin\nAttribute \"light\" \"shadows\" [\"on\"]\n\
+               LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [0 0 0] \"to\" [1 0 1]\n\
+               Surface \"matte\" \"Ka\" [0] \"Kd\" [1]\n\
+               AttributeBegin\nAttribute \"displacementbound\" \"sphere\" [0.5]\n\
+               Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.5]\n\
+               Translate -2.5 0 5\nSphere 1 -1 1 360\nAttributeEnd\n\
+               Patch \"bilinear\" \"P\" [-5 2.5 10  5 2.5 10  -5 -2.5 10  5 -2.5 10]\nWorldEnd\n";
+    let (r, diags) = render_rib(rib);
+    assert!(bound_warnings(&diags).is_empty(), "{diags:?}");
+    // The lit plane: matte, N·L = cos 45°.
+    let lit = std::f32::consts::FRAC_1_SQRT_2;
+    let mut dark = 0usize;
+    for y in 0..100 {
+        for x in 100..200 {
+            let p = &r.rgba[(y * 200 + x) * 4..][..4];
+            dark += usize::from(p[0] < 0.5 * lit);
+        }
+    }
+    let area = dark as f64 * 0.05 * 0.05;
+    let expected = std::f64::consts::PI * 1.5 * 1.5 * std::f64::consts::SQRT_2;
+    assert!(
+        (area - expected).abs() / expected < 0.03,
+        "shadow area {area}, expected {expected}"
+    );
 }
