@@ -365,3 +365,30 @@ fn displaced_casters_cast_displaced_shadows() {
         "shadow area {area}, expected {expected}"
     );
 }
+
+/// A displaced surface that comes nearer than its bound said is not lost to occlusion culling:
+/// a sphere behind an opaque square (z = 5) is pushed out by 1 (front at z = 4.5) through the
+/// square. With no bound, buckets the square fills cull the sphere's pieces by their
+/// undisplaced depth; the re-render must bring them back: the image equals the one with the
+/// right bound, bit for bit, and the sphere is in front at the centre (depth 4.5).
+#[test]
+fn displacement_towards_the_camera_is_not_occlusion_culled() {
+    let scene = |bound: &str| {
+        format!(
+            "Format 120 120 1\nScreenWindow -3 3 -3 3\nPixelSamples 2 2\n\
+             Option \"limits\" \"bucketsize\" [8 8]\nWorldBegin\n\
+             Patch \"bilinear\" \"P\" [-1.2 1.2 5  1.2 1.2 5  -1.2 -1.2 5  1.2 -1.2 5]\n\
+             AttributeBegin\n{bound}\nColor [1 0 0]\n\
+             Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [1]\n\
+             Translate 0 0 6.5\nSphere 1 -1 1 360\nAttributeEnd\nWorldEnd\n"
+        )
+    };
+    let (right, rd) = render_rib(&scene("Attribute \"displacementbound\" \"sphere\" [1]"));
+    let (none, nd) = render_rib(&scene(""));
+    assert!(bound_warnings(&rd).is_empty(), "{rd:?}");
+    assert_eq!(bound_warnings(&nd).len(), 1, "{nd:?}");
+    let centre = 60 * 120 + 60;
+    assert!((right.z[centre] - 4.5).abs() < 1e-3, "{}", right.z[centre]);
+    assert!(none.z == right.z, "depth at the centre {}", none.z[centre]);
+    assert!(none.rgba == right.rgba);
+}

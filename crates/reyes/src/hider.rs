@@ -9,7 +9,7 @@ use crate::{RenderSettings, Rendered, Stats};
 use glam::Vec3;
 use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::Relaxed};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
@@ -111,6 +111,8 @@ struct GridSlot {
     remaining: AtomicUsize,
     /// The grid's [`Overflow`], kept after the grid is freed for the re-bucketing pass.
     overflow: OnceLock<Overflow>,
+    /// Whether some bucket diced and shaded the piece (not all culled it as occluded).
+    shaded: AtomicBool,
 }
 
 impl GridSlot {
@@ -119,12 +121,14 @@ impl GridSlot {
             grid: Mutex::new(None),
             remaining: AtomicUsize::new(remaining),
             overflow: OnceLock::new(),
+            shaded: AtomicBool::new(false),
         }
     }
 
     fn get(&self, make: impl FnOnce() -> Option<Arc<ShadedGrid>>) -> Option<Arc<ShadedGrid>> {
         let mut g = self.grid.lock().unwrap_or_else(|e| e.into_inner());
         let g = g.get_or_insert_with(make).clone();
+        self.shaded.store(true, Relaxed);
         if let Some(o) = g.as_ref().and_then(|g| g.overflow) {
             let _ = self.overflow.set(o);
         }
@@ -253,6 +257,8 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let mut todo: Vec<usize> = (0..nbx * nby).collect();
     let mut overflows: Vec<Option<Overflow>> = vec![None; pieces.len()];
     let mut rerendered = 0usize;
+    let mut shaded = vec![false; pieces.len()];
+    let mut padded_by: Vec<f32> = pieces.iter().map(|p| p.attrs.displacement_bound).collect();
     while !todo.is_empty() {
         let mut overlaps = vec![0usize; pieces.len()];
         for &b in &todo {
@@ -292,8 +298,12 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
             buckets[b] = o;
         }
         let mut grown = false;
+        // Pieces now nearer than their old bound said: a bucket may have culled them as
+        // occluded, so every bucket listing one renders again.
+        let mut nearer = vec![false; pieces.len()];
         for (id, slot) in grids.iter().enumerate() {
             if let (None, Some(o)) = (overflows[id], slot.overflow.get()) {
+                nearer[id] = o.zmin < pieces[id].zmin;
                 let p = &mut pieces[id];
                 p.raster = [
                     p.raster[0].min(o.raster[0]),
@@ -306,12 +316,42 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
                 grown = true;
             }
         }
+        // A piece no bucket shaded (all culled it as occluded, by its undisplaced depth) is
+        // not measured: pad it by the most its primitive's measured grids moved, so the
+        // next pass shades it where it may now show (and measures it, if it moves farther).
+        for (id, slot) in grids.iter().enumerate() {
+            shaded[id] |= slot.shaded.load(Relaxed);
+        }
+        let mut moved = vec![0.0f32; frame.primitives.len()];
+        for (p, o) in pieces.iter().zip(&overflows) {
+            if let Some(o) = o {
+                moved[p.prim_index] = moved[p.prim_index].max(o.displacement);
+            }
+        }
+        for (id, p) in pieces.iter_mut().enumerate() {
+            let m = moved[p.prim_index];
+            if shaded[id] || m <= padded_by[id] {
+                continue;
+            }
+            let b = p.prim.get().bound().padded(m);
+            let r = refiner.raster_bound(&b);
+            p.raster = [
+                p.raster[0].min(r[0]),
+                p.raster[1].max(r[1]),
+                p.raster[2].min(r[2]),
+                p.raster[3].max(r[3]),
+            ];
+            nearer[id] |= b.min.z < p.zmin;
+            p.zmin = p.zmin.min(b.min.z);
+            padded_by[id] = m;
+            grown = true;
+        }
         if !grown {
             break;
         }
         let relisted = layout.lists(&pieces);
         todo = (0..nbx * nby)
-            .filter(|&b| relisted[b] != lists[b])
+            .filter(|&b| relisted[b] != lists[b] || relisted[b].iter().any(|&id| nearer[id]))
             .collect();
         lists = relisted;
         rerendered += todo.len();
