@@ -392,3 +392,15 @@ fn displacement_towards_the_camera_is_not_occlusion_culled() {
     assert!(none.z == right.z, "depth at the centre {}", none.z[centre]);
     assert!(none.rgba == right.rgba);
 }
+
+/// Depth passes (`Surface "null"`, as for shadow maps) see the displaced surface: the front of
+/// a unit sphere at z = 5 pushed out by 0.25 is at depth 3.75 (undisplaced: 4), within the
+/// micropolygon chord error at the pole (1e-3).
+#[test]
+fn null_surface_depth_passes_are_displaced() {
+    let rib = constant_sphere(0.25, "Attribute \"displacementbound\" \"sphere\" [0.25]")
+        .replace("WorldBegin\n", "WorldBegin\nSurface \"null\"\n");
+    let (r, _) = render_rib(&rib);
+    let centre = (RES / 2 * RES + RES / 2) as usize;
+    assert!((r.z[centre] - 3.75).abs() < 1e-3, "depth {}", r.z[centre]);
+}
