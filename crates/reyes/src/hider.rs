@@ -9,8 +9,8 @@ use crate::{RenderSettings, Rendered, Stats};
 use glam::Vec3;
 use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
-use std::sync::{Arc, Mutex};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::Relaxed};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 /// A diced, shaded grid in raster space.
@@ -28,6 +28,20 @@ struct ShadedGrid {
     seam: [Vec<f64>; 4],
     matte: bool,
     smooth: bool,
+    /// Set when displacement moved the grid farther than its `displacementbound`.
+    overflow: Option<Overflow>,
+}
+
+/// Where a displaced grid really is, when displacement moved it farther than the piece's
+/// `displacementbound` said (so the piece may have been bucketed too tightly).
+#[derive(Clone, Copy, Debug)]
+struct Overflow {
+    /// Raster x0 x1 y0 y1 of the displaced vertices, grown by the seams' reach.
+    raster: [f32; 4],
+    /// Nearest camera depth of the displaced vertices.
+    zmin: f32,
+    /// Largest distance (camera space) a vertex moved.
+    displacement: f32,
 }
 
 /// Floor of a border segment's outward reach: covers slivers thinner than the curvature
@@ -95,12 +109,30 @@ struct GridSlot {
     grid: Mutex<Option<Option<Arc<ShadedGrid>>>>,
     /// Buckets that still have to visit this piece.
     remaining: AtomicUsize,
+    /// The grid's [`Overflow`], kept after the grid is freed for the re-bucketing pass.
+    overflow: OnceLock<Overflow>,
+    /// Whether some bucket diced and shaded the piece (not all culled it as occluded).
+    shaded: AtomicBool,
 }
 
 impl GridSlot {
+    fn new(remaining: usize) -> GridSlot {
+        GridSlot {
+            grid: Mutex::new(None),
+            remaining: AtomicUsize::new(remaining),
+            overflow: OnceLock::new(),
+            shaded: AtomicBool::new(false),
+        }
+    }
+
     fn get(&self, make: impl FnOnce() -> Option<Arc<ShadedGrid>>) -> Option<Arc<ShadedGrid>> {
         let mut g = self.grid.lock().unwrap_or_else(|e| e.into_inner());
-        g.get_or_insert_with(make).clone()
+        let g = g.get_or_insert_with(make).clone();
+        self.shaded.store(true, Relaxed);
+        if let Some(o) = g.as_ref().and_then(|g| g.overflow) {
+            let _ = self.overflow.set(o);
+        }
+        g
     }
 
     /// One overlapping bucket is done; the last one frees the grid.
@@ -175,7 +207,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
         })
         .collect();
     let mut warnings = Vec::new();
-    let mut pieces = Vec::new();
+    let mut pieces: Vec<Piece> = Vec::new();
     let mut culled = 0;
     for (index, ((ps, counts), fp)) in per_prim.into_iter().zip(&frame.primitives).enumerate() {
         culled += counts.culled;
@@ -201,76 +233,131 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let [bw, bh] = opts.bucket_size.map(|b| b.max(1));
     let nbx = width.div_ceil(bw).max(1) as usize;
     let nby = height.div_ceil(bh).max(1) as usize;
-    let mut lists: Vec<Vec<usize>> = vec![Vec::new(); nbx * nby];
-    for (id, p) in pieces.iter().enumerate() {
-        let bx0 = ((p.raster[0] - margin - cx0 as f32) / bw as f32)
-            .floor()
-            .max(0.0) as usize;
-        let bx1 = ((p.raster[1] + margin - cx0 as f32) / bw as f32).floor();
-        let by0 = ((p.raster[2] - margin - cy0 as f32) / bh as f32)
-            .floor()
-            .max(0.0) as usize;
-        let by1 = ((p.raster[3] + margin - cy0 as f32) / bh as f32).floor();
-        if bx1 < 0.0 || by1 < 0.0 {
-            continue;
-        }
-        for by in by0..=(by1 as usize).min(nby - 1) {
-            for bx in bx0..=(bx1 as usize).min(nbx - 1) {
-                lists[by * nbx + bx].push(id);
-            }
-        }
-    }
-    for l in &mut lists {
-        l.sort_by(|&a, &b| pieces[a].zmin.total_cmp(&pieces[b].zmin).then(a.cmp(&b)));
-    }
-    let mut overlaps = vec![0usize; pieces.len()];
-    for l in &lists {
-        for &id in l {
-            overlaps[id] += 1;
-        }
-    }
-    let grids: Vec<GridSlot> = overlaps
-        .into_iter()
-        .map(|n| GridSlot {
-            grid: Mutex::new(None),
-            remaining: AtomicUsize::new(n),
-        })
-        .collect();
+    let layout = BucketLayout {
+        origin: [cx0 as f32, cy0 as f32],
+        size: [bw as f32, bh as f32],
+        count: [nbx, nby],
+        margin,
+    };
+    let mut lists = layout.lists(&pieces);
     let counters = Counters::default();
     let done = AtomicUsize::new(0);
-    let total = nbx * nby;
+    let total = AtomicUsize::new(nbx * nby);
     let frame_no = frame.number.unwrap_or(0);
     let spp = opts.pixel_samples;
 
     let (shading, shader_warnings) = FrameShading::new(frame, settings.textures);
     warnings.extend(shader_warnings);
-    let buckets: Vec<(Vec<[f32; 4]>, Vec<f32>)> = (0..total)
-        .into_par_iter()
-        .map(|b| {
-            let (bx, by) = ((b % nbx) as u32, (b / nbx) as u32);
-            let px0 = cx0 + bx * bw;
-            let py0 = cy0 + by * bh;
-            let px1 = (px0 + bw).min(cx1);
-            let py1 = (py0 + bh).min(cy1);
-            let out = render_bucket(
-                frame,
-                &shading,
-                &pieces,
-                &grids,
-                &lists[b],
-                [px0, px1, py0, py1],
-                &filter,
-                spp,
-                frame_no,
-                &counters,
-            );
-            let n = done.fetch_add(1, Relaxed) + 1;
-            if let Some(p) = settings.progress {
-                p(n, total);
+    // Render every bucket; then, if a displaced grid turned out larger than its
+    // displacementbound, grow its piece to the measured bound, re-list the buckets and render
+    // again exactly the buckets whose lists changed, until no new grid overflows. Each pass
+    // shades a deterministic set of grids, so the image does not depend on the thread count,
+    // and it equals the image a large enough bound gives (the same pieces, diced the same).
+    let mut buckets: Vec<(Vec<[f32; 4]>, Vec<f32>)> = vec![Default::default(); nbx * nby];
+    let mut todo: Vec<usize> = (0..nbx * nby).collect();
+    let mut overflows: Vec<Option<Overflow>> = vec![None; pieces.len()];
+    let mut rerendered = 0usize;
+    let mut shaded = vec![false; pieces.len()];
+    let mut padded_by: Vec<f32> = pieces.iter().map(|p| p.attrs.displacement_bound).collect();
+    while !todo.is_empty() {
+        let mut overlaps = vec![0usize; pieces.len()];
+        for &b in &todo {
+            for &id in &lists[b] {
+                overlaps[id] += 1;
             }
-            out
-        })
-        .collect();
+        }
+        let grids: Vec<GridSlot> = overlaps.into_iter().map(GridSlot::new).collect();
+        let out: Vec<(Vec<[f32; 4]>, Vec<f32>)> = todo
+            .par_iter()
+            .map(|&b| {
+                let (bx, by) = ((b % nbx) as u32, (b / nbx) as u32);
+                let px0 = cx0 + bx * bw;
+                let py0 = cy0 + by * bh;
+                let px1 = (px0 + bw).min(cx1);
+                let py1 = (py0 + bh).min(cy1);
+                let out = render_bucket(
+                    frame,
+                    &shading,
+                    &pieces,
+                    &grids,
+                    &lists[b],
+                    [px0, px1, py0, py1],
+                    &filter,
+                    spp,
+                    frame_no,
+                    &counters,
+                );
+                let n = done.fetch_add(1, Relaxed) + 1;
+                if let Some(p) = settings.progress {
+                    p(n, total.load(Relaxed));
+                }
+                out
+            })
+            .collect();
+        for (&b, o) in todo.iter().zip(out) {
+            buckets[b] = o;
+        }
+        let mut grown = false;
+        // Pieces now nearer than their old bound said: a bucket may have culled them as
+        // occluded, so every bucket listing one renders again.
+        let mut nearer = vec![false; pieces.len()];
+        for (id, slot) in grids.iter().enumerate() {
+            if let (None, Some(o)) = (overflows[id], slot.overflow.get()) {
+                nearer[id] = o.zmin < pieces[id].zmin;
+                let p = &mut pieces[id];
+                p.raster = [
+                    p.raster[0].min(o.raster[0]),
+                    p.raster[1].max(o.raster[1]),
+                    p.raster[2].min(o.raster[2]),
+                    p.raster[3].max(o.raster[3]),
+                ];
+                p.zmin = p.zmin.min(o.zmin);
+                overflows[id] = Some(*o);
+                grown = true;
+            }
+        }
+        // A piece no bucket shaded (all culled it as occluded, by its undisplaced depth) is
+        // not measured: pad it by the most its primitive's measured grids moved, so the
+        // next pass shades it where it may now show (and measures it, if it moves farther).
+        for (id, slot) in grids.iter().enumerate() {
+            shaded[id] |= slot.shaded.load(Relaxed);
+        }
+        let mut moved = vec![0.0f32; frame.primitives.len()];
+        for (p, o) in pieces.iter().zip(&overflows) {
+            if let Some(o) = o {
+                moved[p.prim_index] = moved[p.prim_index].max(o.displacement);
+            }
+        }
+        for (id, p) in pieces.iter_mut().enumerate() {
+            let m = moved[p.prim_index];
+            if shaded[id] || m <= padded_by[id] {
+                continue;
+            }
+            let b = p.prim.get().bound().padded(m);
+            let r = refiner.raster_bound(&b);
+            p.raster = [
+                p.raster[0].min(r[0]),
+                p.raster[1].max(r[1]),
+                p.raster[2].min(r[2]),
+                p.raster[3].max(r[3]),
+            ];
+            nearer[id] |= b.min.z < p.zmin;
+            p.zmin = p.zmin.min(b.min.z);
+            padded_by[id] = m;
+            grown = true;
+        }
+        if !grown {
+            break;
+        }
+        let relisted = layout.lists(&pieces);
+        todo = (0..nbx * nby)
+            .filter(|&b| relisted[b] != lists[b] || relisted[b].iter().any(|&id| nearer[id]))
+            .collect();
+        lists = relisted;
+        rerendered += todo.len();
+        total.fetch_add(todo.len(), Relaxed);
+    }
+    warnings.extend(overflow_warnings(frame, &pieces, &overflows, rerendered));
 
     let mut rgba = vec![0.0f32; (width * height * 4) as usize];
     let mut z = vec![f32::MAX; (width * height) as usize];
@@ -335,6 +422,76 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     }
 }
 
+/// The bucket grid over the crop region.
+struct BucketLayout {
+    origin: [f32; 2],
+    size: [f32; 2],
+    count: [usize; 2],
+    /// Filter reach (pixels) added around each piece's raster bound.
+    margin: f32,
+}
+
+impl BucketLayout {
+    /// Per bucket, the pieces whose padded raster bound overlaps it, nearest first.
+    fn lists(&self, pieces: &[Piece]) -> Vec<Vec<usize>> {
+        let [nbx, nby] = self.count;
+        let [ox, oy] = self.origin;
+        let [bw, bh] = self.size;
+        let m = self.margin;
+        let mut lists: Vec<Vec<usize>> = vec![Vec::new(); nbx * nby];
+        for (id, p) in pieces.iter().enumerate() {
+            let bx0 = ((p.raster[0] - m - ox) / bw).floor().max(0.0) as usize;
+            let bx1 = ((p.raster[1] + m - ox) / bw).floor();
+            let by0 = ((p.raster[2] - m - oy) / bh).floor().max(0.0) as usize;
+            let by1 = ((p.raster[3] + m - oy) / bh).floor();
+            if bx1 < 0.0 || by1 < 0.0 {
+                continue;
+            }
+            for by in by0..=(by1 as usize).min(nby - 1) {
+                for bx in bx0..=(bx1 as usize).min(nbx - 1) {
+                    lists[by * nbx + bx].push(id);
+                }
+            }
+        }
+        for l in &mut lists {
+            l.sort_by(|&a, &b| pieces[a].zmin.total_cmp(&pieces[b].zmin).then(a.cmp(&b)));
+        }
+        lists
+    }
+}
+
+/// One warning per primitive whose displaced grids left their `displacementbound`, at the
+/// primitive's request, with the bound given and the largest displacement measured.
+fn overflow_warnings(
+    frame: &Frame,
+    pieces: &[Piece],
+    overflows: &[Option<Overflow>],
+    rerendered: usize,
+) -> Vec<Diagnostic> {
+    let mut worst: Vec<Option<f32>> = vec![None; frame.primitives.len()];
+    for (p, o) in pieces.iter().zip(overflows) {
+        if let (Some(o), Some(w)) = (o, worst.get_mut(p.prim_index)) {
+            *w = Some(w.map_or(o.displacement, |w| w.max(o.displacement)));
+        }
+    }
+    worst
+        .iter()
+        .zip(&frame.primitives)
+        .filter_map(|(w, fp)| {
+            let w = (*w)?;
+            Some(Diagnostic {
+                severity: Severity::Warning,
+                span: fp.span.clone(),
+                request: None,
+                message: format!(
+                    "displacement moved the surface {w:.4} (camera space) but its \"displacementbound\" \"sphere\" is {:.4} there; rendered correctly by re-rendering {rerendered} bucket(s) with the measured bound (raise the bound to avoid the cost)",
+                    fp.attributes.displacement_bound
+                ),
+            })
+        })
+        .collect()
+}
+
 fn dice_and_shade(
     frame: &Frame,
     shading: &FrameShading,
@@ -391,6 +548,11 @@ fn dice_and_shade(
         seam_reach(&col(0), &col(1)),
         seam_reach(&col(nu - 1), &col(nu - 2)),
     ];
+    let overflow = a
+        .displacement
+        .is_some()
+        .then(|| measure_overflow(&grid.p, &shaded.p, &pos, &seam, a.displacement_bound))
+        .flatten();
     counters.grids.fetch_add(1, Relaxed);
     counters
         .micropolygons
@@ -405,7 +567,55 @@ fn dice_and_shade(
         seam,
         matte: a.matte,
         smooth: a.smooth_shading,
+        overflow,
     }))
+}
+
+/// The grid's [`Overflow`] if some vertex moved (diced `before` → displaced `after`, camera
+/// space) farther than `bound`: then the displaced grid may lie outside the piece's padded
+/// bound. The tolerance absorbs f32 rounding of `P + a·N` for a displacement exactly at the
+/// bound.
+fn measure_overflow(
+    before: &[Vec3],
+    after: &[Vec3],
+    pos: &[Vec3],
+    seam: &[Vec<f64>; 4],
+    bound: f32,
+) -> Option<Overflow> {
+    let mut moved = 0.0f32;
+    let mut scale = 0.0f32;
+    for (b, a) in before.iter().zip(after) {
+        let d = (*a - *b).length();
+        if d.is_finite() {
+            moved = moved.max(d);
+        }
+        scale = scale.max(b.abs().max_element());
+    }
+    if moved <= bound * (1.0 + 1e-4) + 1e-6 * scale {
+        return None;
+    }
+    let reach = seam.iter().flatten().copied().fold(0.0f64, f64::max) as f32;
+    let mut raster = [
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+    ];
+    let mut zmin = f32::INFINITY;
+    for q in pos.iter().filter(|q| q.is_finite()) {
+        raster = [
+            raster[0].min(q.x - reach),
+            raster[1].max(q.x + reach),
+            raster[2].min(q.y - reach),
+            raster[3].max(q.y + reach),
+        ];
+        zmin = zmin.min(q.z);
+    }
+    Some(Overflow {
+        raster,
+        zmin,
+        displacement: moved,
+    })
 }
 
 #[allow(clippy::too_many_arguments)]

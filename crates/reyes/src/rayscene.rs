@@ -11,8 +11,11 @@
 //! of a primitive is the offset its own shadow rays start with, so a lit curved surface never
 //! shadows itself on the chords of its own tessellation.
 //!
-//! Not modelled: displacement (shadows are cast by the undisplaced surface), partial
-//! transmission ("Os"/"shader" cast as opaque), motion.
+//! Displaced primitives cast displaced shadows: each caster grid (the fine one, so the chord
+//! error is measured on the displaced surface) runs the primitive's displacement shader.
+//!
+//! Not modelled: partial transmission ("Os"/"shader" cast as opaque), motion; area-light
+//! geometry is sampled undisplaced.
 use glam::{DVec3, Vec3};
 use illume_geom::{Grid, Primitive};
 use illume_raytrace::{Bvh, Triangle};
@@ -54,11 +57,16 @@ impl Occlusion for RayScene {
 impl RayScene {
     /// Tessellates every primitive that casts shadows (not area-light geometry: an emitter
     /// does not block its own light).
-    pub fn build(frame: &Frame) -> RayScene {
+    /// `displaced(prim, grid)` gives the grid's displaced positions (`None`: not displaced).
+    pub fn build(
+        frame: &Frame,
+        displaced: &(dyn Fn(usize, &Grid) -> Option<Vec<Vec3>> + Sync),
+    ) -> RayScene {
         let per_prim: Vec<(Vec<Triangle>, f32)> = frame
             .primitives
             .par_iter()
-            .map(|fp| {
+            .enumerate()
+            .map(|(index, fp)| {
                 let a = &fp.attributes;
                 let mut tris = Vec::new();
                 let mut offset = 0.0f32;
@@ -66,7 +74,10 @@ impl RayScene {
                 if !a.casts_shadows || a.area_light.is_some() {
                     return (tris, offset);
                 }
-                for g in diced(fp.primitive.as_ref(), &frame.camera, MIN_SEGMENTS) {
+                for mut g in diced(fp.primitive.as_ref(), &frame.camera, MIN_SEGMENTS) {
+                    if let Some(p) = displaced(index, &g) {
+                        g.p = p;
+                    }
                     offset = offset.max(triangles(&g, &mut tris));
                 }
                 (tris, offset * OFFSET_MARGIN)

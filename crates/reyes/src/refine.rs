@@ -143,21 +143,7 @@ impl Refiner<'_> {
             }
             return;
         }
-        let mut raster = [
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-        ];
-        for c in b.corners() {
-            let Some(q) = self.project(c) else { continue };
-            raster = [
-                raster[0].min(q.x as f32),
-                raster[1].max(q.x as f32),
-                raster[2].min(q.y as f32),
-                raster[3].max(q.y as f32),
-            ];
-        }
+        let raster = self.raster_bound(&b);
         if raster[1] < self.region[0]
             || raster[0] > self.region[1]
             || raster[3] < self.region[2]
@@ -189,6 +175,26 @@ impl Refiner<'_> {
             zmin: b.min.z,
             prim_index: 0,
         });
+    }
+
+    /// Raster x0 x1 y0 y1 of the box's corners (those in front of the eye).
+    pub fn raster_bound(&self, b: &Bound) -> [f32; 4] {
+        let mut raster = [
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        for c in b.corners() {
+            let Some(q) = self.project(c) else { continue };
+            raster = [
+                raster[0].min(q.x as f32),
+                raster[1].max(q.x as f32),
+                raster[2].min(q.y as f32),
+                raster[3].max(q.y as f32),
+            ];
+        }
+        raster
     }
 
     /// Micropolygons per side so each is about `ShadingRate` pixels in area: the longest

@@ -199,15 +199,11 @@ impl<'a> FrameShading<'a> {
                 }
             })
             .collect();
-        let rays = lights
-            .iter()
-            .flatten()
-            .any(illume_shade::Light::needs_rays)
-            .then(|| RayScene::build(frame));
+        let needs_rays = lights.iter().flatten().any(illume_shade::Light::needs_rays);
         let (screen_from_camera, ndc_from_camera, raster_from_camera) = projections(frame);
         let specular_model =
             SpecularModel::from_option(&frame.options.specular_model).unwrap_or_default();
-        let shading = FrameShading {
+        let mut shading = FrameShading {
             surfaces,
             default_surface,
             displacements,
@@ -220,47 +216,55 @@ impl<'a> FrameShading<'a> {
             orthographic: !frame.camera.is_perspective(),
             specular_model,
             textures,
-            rays,
+            rays: None,
             seed: frame.number.unwrap_or(0) as u32,
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
         };
+        if needs_rays {
+            // Casters are displaced like the grids the camera sees, so a displaced surface
+            // casts its displaced shadow.
+            let displaced = |prim: usize, grid: &Grid| {
+                let attrs = &frame.primitives[prim].attributes;
+                let flip = if attrs.orientation_rh { -1.0 } else { 1.0 };
+                shading.displaced_positions(grid, attrs, flip, prim)
+            };
+            shading.rays = Some(RayScene::build(frame, &displaced));
+        }
         (shading, diags)
     }
 
-    fn surface_for(&self, attrs: &Attributes) -> BoundSurface {
-        match attrs.surface.as_ref() {
-            None => Some(self.default_surface.clone()),
-            Some(s) => self
-                .surfaces
-                .get(&(Arc::as_ptr(s) as usize))
-                .cloned()
-                .unwrap_or_else(|| Some(self.default_surface.clone())),
-        }
+    fn displacement_for(&self, attrs: &Attributes) -> BoundDisplacement {
+        let d = attrs.displacement.as_ref()?;
+        self.displacements
+            .get(&(Arc::as_ptr(d) as usize))
+            .cloned()
+            .flatten()
     }
 
-    /// Shades one grid of frame primitive `prim`. `flip` (±1) orients the geometric normals as
-    /// the attributes say.
-    ///
-    /// "object" space is not yet carried with the primitive, so shaders see the surface's shader
-    /// space there (the same space unless the Surface was declared under another transform).
-    pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
+    /// The grid's positions after its displacement shader, or `None` when the primitive has
+    /// none (for the ray-traced shadow casters, which are diced apart from the hider's grids).
+    pub fn displaced_positions(
+        &self,
+        grid: &Grid,
+        attrs: &Attributes,
+        flip: f32,
+        prim: usize,
+    ) -> Option<Vec<Vec3>> {
+        let d = self.displacement_for(attrs)?;
+        let mut g = self.shading_grid(grid, attrs, flip);
+        let mut env = self.env(attrs, prim);
+        if let Some(s) = attrs.displacement.as_ref() {
+            env.camera_from_shader = s.camera_from_shader;
+        }
+        displace(&d, &mut g, &env);
+        Some(g.p)
+    }
+
+    /// The grid as the shaders see it: normals oriented by `flip`, `Cs`/`Os` from primitive
+    /// variables or the attributes.
+    fn shading_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32) -> ShadingGrid {
         let n = grid.len();
-        let cs = grid
-            .cs
-            .clone()
-            .unwrap_or_else(|| vec![Vec3::from(attrs.color); n]);
-        let os = grid
-            .os
-            .clone()
-            .unwrap_or_else(|| vec![Vec3::from(attrs.opacity); n]);
-        let Some(surface) = self.surface_for(attrs) else {
-            return Shaded {
-                p: grid.p.clone(),
-                ci: vec![Vec3::ZERO; n],
-                oi: os,
-            };
-        };
         let mut g = ShadingGrid::new(grid.nu, grid.nv);
         g.p.clone_from(&grid.p);
         g.n = grid.n.iter().map(|v| *v * flip).collect();
@@ -273,17 +277,23 @@ impl<'a> FrameShading<'a> {
         g.t.clone_from(&grid.t);
         g.du = grid.du;
         g.dv = grid.dv;
-        g.cs = cs;
-        g.os = os;
+        g.cs = grid
+            .cs
+            .clone()
+            .unwrap_or_else(|| vec![Vec3::from(attrs.color); n]);
+        g.os = grid
+            .os
+            .clone()
+            .unwrap_or_else(|| vec![Vec3::from(attrs.opacity); n]);
         for var in &grid.vars {
             g.set_var(&var.name, var.components, var.data.clone());
         }
         g.set_incident_from_p(self.orthographic);
-        let lights: Vec<&illume_shade::Light> = attrs
-            .lights
-            .iter()
-            .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
-            .collect();
+        g
+    }
+
+    /// The shading environment of frame primitive `prim`, "shader" space the surface's.
+    fn env(&self, attrs: &Attributes, prim: usize) -> ShadingEnv<'_> {
         let mut env = ShadingEnv::new();
         env.camera_from_world = self.camera_from_world;
         let camera_from_shader = attrs
@@ -304,19 +314,55 @@ impl<'a> FrameShading<'a> {
             env.ray_offset = r.offset(prim);
         }
         env.seed = self.seed;
-        let displacement = attrs.displacement.as_ref().and_then(|d| {
-            self.displacements
-                .get(&(Arc::as_ptr(d) as usize))
+        env
+    }
+
+    fn surface_for(&self, attrs: &Attributes) -> BoundSurface {
+        match attrs.surface.as_ref() {
+            None => Some(self.default_surface.clone()),
+            Some(s) => self
+                .surfaces
+                .get(&(Arc::as_ptr(s) as usize))
                 .cloned()
-                .flatten()
-        });
-        if let Some(d) = displacement {
-            env.camera_from_shader = attrs
-                .displacement
-                .as_ref()
-                .map_or(camera_from_shader, |s| s.camera_from_shader);
+                .unwrap_or_else(|| Some(self.default_surface.clone())),
+        }
+    }
+
+    /// Shades one grid of frame primitive `prim`. `flip` (±1) orients the geometric normals as
+    /// the attributes say.
+    ///
+    /// "object" space is not yet carried with the primitive, so shaders see the surface's shader
+    /// space there (the same space unless the Surface was declared under another transform).
+    pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
+        let Some(surface) = self.surface_for(attrs) else {
+            let os = grid
+                .os
+                .clone()
+                .unwrap_or_else(|| vec![Vec3::from(attrs.opacity); grid.len()]);
+            // Depth passes (shadow maps) still see the displaced surface.
+            let p = self
+                .displaced_positions(grid, attrs, flip, prim)
+                .unwrap_or_else(|| grid.p.clone());
+            return Shaded {
+                p,
+                ci: vec![Vec3::ZERO; grid.len()],
+                oi: os,
+            };
+        };
+        let mut g = self.shading_grid(grid, attrs, flip);
+        let lights: Vec<&illume_shade::Light> = attrs
+            .lights
+            .iter()
+            .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
+            .collect();
+        let mut env = self.env(attrs, prim);
+        if let Some(d) = self.displacement_for(attrs) {
+            let surface_space = env.camera_from_shader;
+            if let Some(s) = attrs.displacement.as_ref() {
+                env.camera_from_shader = s.camera_from_shader;
+            }
             displace(&d, &mut g, &env);
-            env.camera_from_shader = camera_from_shader;
+            env.camera_from_shader = surface_space;
         }
         let stats = shade_surface(&surface, &mut g, &lights, &env);
         if stats.nonfinite > 0 {

@@ -1097,9 +1097,24 @@ impl Ri {
                 ("displacementbound", "sphere") if f.is_some() => {
                     // The bound is given in "coordinatesystem" (object by default): scale it
                     // by the largest axis stretch of that space into camera space.
-                    let m = paramlist::string(params, "coordinatesystem")
-                        .and_then(|s| self.named_space(&s))
-                        .unwrap_or(self.ctm);
+                    let space = paramlist::string(params, "coordinatesystem")
+                        .unwrap_or_else(|| "object".to_string());
+                    // "shader": the space the current Displacement was declared in.
+                    let shader = self.attributes.displacement.as_ref();
+                    let m = match space.as_str() {
+                        "shader" => Some(shader.map_or(self.ctm, |s| s.camera_from_shader)),
+                        s => self.named_space(s),
+                    };
+                    let m = m.unwrap_or_else(|| {
+                        self.diagnostics.warn(
+                            span,
+                            "Attribute",
+                            format!(
+                                "\"displacementbound\": unknown coordinatesystem \"{space}\"; using object space"
+                            ),
+                        );
+                        self.ctm
+                    });
                     let stretch = [m.x_axis, m.y_axis, m.z_axis]
                         .iter()
                         .map(|a| a.truncate().length())

@@ -39,6 +39,7 @@ mod lighting;
 mod lights;
 mod materials;
 mod mathfunctions;
+mod noise;
 mod occlusion;
 mod parameters;
 mod shadingenv;
@@ -59,6 +60,7 @@ pub use lighting::{
 };
 pub use materials::environment::{raysphere, RaySphere};
 pub use mathfunctions::{mix, smoothstep};
+pub use noise::noise;
 pub use occlusion::Occlusion;
 pub use parameters::ParamValue;
 pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
