@@ -1,6 +1,7 @@
 //! The bucket loop: pieces overlapping each bucket, nearest first; shared grids diced and
 //! shaded once (by whichever bucket needs them first); micropolygons sampled into visible-point
 //! lists; lists composited front to back; pixel filter; exposure.
+use crate::csg::{SolidResolver, NO_SOLID};
 use crate::filter::PixelFilter;
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
 use crate::sampling::sample_position;
@@ -23,6 +24,10 @@ struct ShadedGrid {
     oi: Vec<Vec3>,
     /// Per micropolygon: culled as a back face (Sides 1).
     backface: Vec<bool>,
+    /// The primitive solid this grid bounds ([`NO_SOLID`] for none) and, then, per
+    /// micropolygon, whether it faces the eye (an entering hit); empty otherwise.
+    solid: u32,
+    entering: Vec<bool>,
     /// Outward reach (raster pixels) of each border segment, for the rows `j = 0`,
     /// `j = nv−1` and the columns `i = 0`, `i = nu−1`: see [`seam_reach`].
     seam: [Vec<f64>; 4],
@@ -118,6 +123,9 @@ struct VisiblePoint {
     c: Vec3,
     o: Vec3,
     matte: bool,
+    /// For CSG (see `csg.rs`): primitive solid ([`NO_SOLID`] for none), entering hit.
+    solid: u32,
+    entering: bool,
 }
 
 #[derive(Default)]
@@ -370,7 +378,28 @@ fn dice_and_shade(
     } else {
         vec![false; (nu - 1) * (nv - 1)]
     };
-    if a.sides == 1 {
+    // A solid's back faces are never culled: they are where a ray leaves it, which CSG needs
+    // to know, and a difference shows the subtracted solid's far wall. The surface shaders
+    // shade them with `faceforward(N, I)`, so that wall is lit as seen from inside.
+    let solid = frame
+        .primitives
+        .get(piece.prim_index)
+        .and_then(|fp| fp.solid)
+        .unwrap_or(NO_SOLID);
+    let mut entering = Vec::new();
+    if solid != NO_SOLID {
+        entering = (0..(nu - 1) * (nv - 1))
+            .map(|m| {
+                let k = (m / (nu - 1)) * nu + m % (nu - 1);
+                let view = if cam.is_perspective() {
+                    grid.p[k]
+                } else {
+                    Vec3::Z
+                };
+                (grid.ng[k] * flip).dot(view) <= 0.0
+            })
+            .collect();
+    } else if a.sides == 1 {
         for j in 0..nv - 1 {
             for i in 0..nu - 1 {
                 let k = j * nu + i;
@@ -402,6 +431,8 @@ fn dice_and_shade(
         ci: shaded.ci,
         oi: shaded.oi,
         backface,
+        solid,
+        entering,
         seam,
         matte: a.matte,
         smooth: a.smooth_shading,
@@ -510,10 +541,14 @@ fn render_bucket(
 
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();
+    let solids = SolidResolver::new(&frame.solids);
     let composited: Vec<([f32; 4], f32, f32)> = lists
         .iter_mut()
         .map(|l| {
             l.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.order.cmp(&b.order)));
+            if let Some(s) = &solids {
+                s.resolve(l, |vp| (vp.solid, vp.entering));
+            }
             let mut c = Vec3::ZERO;
             let mut t = Vec3::ONE;
             let mut alpha = 0.0f32;
@@ -698,8 +733,11 @@ fn sample_triangle(
                     c,
                     o,
                     matte: g.matte,
+                    solid: g.solid,
+                    entering: g.solid != NO_SOLID && g.entering[(order & 0xffff_ffff) as usize],
                 });
-                if o.min_element() >= 1.0 {
+                // A solid's surface may yet be carved away, so it hides nothing behind it.
+                if o.min_element() >= 1.0 && g.solid == NO_SOLID {
                     opaque_z[s] = z;
                 }
             }
