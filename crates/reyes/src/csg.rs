@@ -37,16 +37,27 @@ impl<'a> SolidResolver<'a> {
 
     /// Removes from a depth-sorted list the solid hits that are not on the composite surface.
     /// `event` gives a point's primitive solid ([`NO_SOLID`] for none) and whether it enters.
-    pub fn resolve<T>(&self, list: &mut Vec<T>, event: impl Fn(&T) -> (u32, bool)) {
+    /// `complete`: no opaque surface cut the list short (see [`Self::unmatched_entries`]).
+    pub fn resolve<T>(&self, list: &mut Vec<T>, complete: bool, event: impl Fn(&T) -> (u32, bool)) {
         if list.iter().all(|p| event(p).0 == NO_SOLID) {
             return;
         }
+        let spurious = if complete {
+            unmatched_entries(list.iter().map(&event))
+        } else {
+            Vec::new()
+        };
         // The primitive solids this sample is inside (a list: a sample meets few solids).
         let mut inside: Vec<u32> = Vec::new();
+        let mut index = 0;
         list.retain(|p| {
             let (leaf, entering) = event(p);
+            index += 1;
             if leaf == NO_SOLID {
                 return true;
+            }
+            if spurious.contains(&(index - 1)) {
+                return false;
             }
             let pos = inside.iter().position(|&l| l == leaf);
             if pos.is_some() == entering {
@@ -67,6 +78,34 @@ impl<'a> SolidResolver<'a> {
             before != after
         });
     }
+}
+
+/// Indices of entering hits that a closed surface never matched with an exit behind them.
+///
+/// Why: at a solid's silhouette the front and back micropolygons are diced separately, so
+/// their polygonal outlines differ by a sliver, and a sample in the sliver hits only the
+/// front. Taken at face value the ray would stay inside that solid to infinity and, say,
+/// carve a thin dark ring out of whatever it is subtracted from. A ray that leaves every
+/// closed surface it enters (when nothing opaque cut the list short) shows such an entry
+/// was a graze: it is ignored. (A graze that hits only the back is already ignored: an exit
+/// from a solid never entered.)
+fn unmatched_entries(events: impl Iterator<Item = (u32, bool)>) -> Vec<usize> {
+    // (primitive solid, index of the entry that made the ray inside it, if it still is).
+    let mut state: Vec<(u32, Option<usize>)> = Vec::new();
+    for (i, (leaf, entering)) in events.enumerate() {
+        if leaf == NO_SOLID {
+            continue;
+        }
+        match state.iter_mut().find(|s| s.0 == leaf) {
+            Some(s) => match (s.1, entering) {
+                (None, true) => s.1 = Some(i),
+                (Some(_), false) => s.1 = None,
+                _ => {}
+            },
+            None => state.push((leaf, entering.then_some(i))),
+        }
+    }
+    state.into_iter().filter_map(|s| s.1).collect()
 }
 
 #[cfg(test)]
@@ -94,7 +133,7 @@ mod tests {
             (4.0, a, false),
             (5.0, b, false), // leaves a solid it never entered
         ];
-        r.resolve(&mut l, |p| (p.1, p.2));
+        r.resolve(&mut l, false, |p| (p.1, p.2));
         let z: Vec<f64> = l.iter().map(|p| p.0).collect();
         assert_eq!(z, [0.0, 1.0, 2.0, 3.0, 4.0]);
     }
@@ -117,9 +156,40 @@ mod tests {
             (3.0, a, false),
             (4.0, c, false),
         ];
-        r.resolve(&mut l, |p| (p.1, p.2));
+        r.resolve(&mut l, false, |p| (p.1, p.2));
         let z: Vec<f64> = l.iter().map(|p| p.0).collect();
         assert_eq!(z, [0.5, 2.0, 3.0, 4.0]);
         assert!(SolidResolver::new(&SolidTree::default()).is_none());
+    }
+
+    /// A − B where the ray grazes B's front at its silhouette and never hits B's back: with
+    /// a complete list the graze is ignored and A's entry stays; a list cut short by an
+    /// opaque surface can not tell a graze from an exit hidden behind it.
+    #[test]
+    fn a_graze_on_a_silhouette_enters_nothing() {
+        let mut t = SolidTree::default();
+        let d = t.add(SolidOp::Difference, None);
+        let a = t.add(SolidOp::Primitive, Some(d));
+        let b = t.add(SolidOp::Primitive, Some(d));
+        let r = SolidResolver::new(&t).unwrap();
+        let graze = vec![(0.0, b, true), (1.0, a, true), (2.0, a, false)];
+        let mut l = graze.clone();
+        r.resolve(&mut l, true, |p| (p.1, p.2));
+        let z: Vec<f64> = l.iter().map(|p| p.0).collect();
+        assert_eq!(z, [1.0, 2.0]);
+        let mut l = graze;
+        r.resolve(&mut l, false, |p| (p.1, p.2));
+        assert!(l.is_empty());
+        // B entered twice (a seam duplicate) and left once is matched.
+        let mut l = vec![
+            (0.0, b, true),
+            (0.0, b, true),
+            (0.5, a, true),
+            (1.0, b, false),
+            (2.0, a, false),
+        ];
+        r.resolve(&mut l, true, |p| (p.1, p.2));
+        let z: Vec<f64> = l.iter().map(|p| p.0).collect();
+        assert_eq!(z, [1.0, 2.0]);
     }
 }

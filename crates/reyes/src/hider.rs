@@ -24,10 +24,11 @@ struct ShadedGrid {
     oi: Vec<Vec3>,
     /// Per micropolygon: culled as a back face (Sides 1).
     backface: Vec<bool>,
-    /// The primitive solid this grid bounds ([`NO_SOLID`] for none) and, then, per
-    /// micropolygon, whether it faces the eye (an entering hit); empty otherwise.
+    /// The primitive solid this grid bounds ([`NO_SOLID`] for none).
     solid: u32,
-    entering: Vec<bool>,
+    /// Whether a micropolygon triangle wound counter-clockwise in raster space faces the eye
+    /// (faces along the outward normal: an entering hit), given the grid's orientation.
+    ccw_enters: bool,
     /// Outward reach (raster pixels) of each border segment, for the rows `j = 0`,
     /// `j = nv−1` and the columns `i = 0`, `i = nu−1`: see [`seam_reach`].
     seam: [Vec<f64>; 4],
@@ -386,20 +387,10 @@ fn dice_and_shade(
         .get(piece.prim_index)
         .and_then(|fp| fp.solid)
         .unwrap_or(NO_SOLID);
-    let mut entering = Vec::new();
-    if solid != NO_SOLID {
-        entering = (0..(nu - 1) * (nv - 1))
-            .map(|m| {
-                let k = (m / (nu - 1)) * nu + m % (nu - 1);
-                let view = if cam.is_perspective() {
-                    grid.p[k]
-                } else {
-                    Vec3::Z
-                };
-                (grid.ng[k] * flip).dot(view) <= 0.0
-            })
-            .collect();
-    } else if a.sides == 1 {
+    // Whether a solid's hit enters it is judged per triangle from its raster winding (see
+    // `ccw_enters`), not from the vertex normals: those vanish at a sphere's poles, and the
+    // winding is exactly what the sampler sees.
+    if solid == NO_SOLID && a.sides == 1 {
         for j in 0..nv - 1 {
             for i in 0..nu - 1 {
                 let k = j * nu + i;
@@ -432,7 +423,7 @@ fn dice_and_shade(
         oi: shaded.oi,
         backface,
         solid,
-        entering,
+        ccw_enters: flip > 0.0,
         seam,
         matte: a.matte,
         smooth: a.smooth_shading,
@@ -544,10 +535,12 @@ fn render_bucket(
     let solids = SolidResolver::new(&frame.solids);
     let composited: Vec<([f32; 4], f32, f32)> = lists
         .iter_mut()
-        .map(|l| {
+        .zip(&opaque_z)
+        .map(|(l, oz)| {
             l.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.order.cmp(&b.order)));
             if let Some(s) = &solids {
-                s.resolve(l, |vp| (vp.solid, vp.entering));
+                // Only opaque surfaces outside solids set `opaque_z` and cut lists short.
+                s.resolve(l, oz.is_infinite(), |vp| (vp.solid, vp.entering));
             }
             let mut c = Vec3::ZERO;
             let mut t = Vec3::ONE;
@@ -659,6 +652,7 @@ fn sample_triangle(
     if ar == 0.0 || !ar.is_finite() {
         return;
     }
+    let ccw = ar > 0.0;
     if ar < 0.0 {
         v.swap(1, 2);
         idx.swap(1, 2);
@@ -734,7 +728,7 @@ fn sample_triangle(
                     o,
                     matte: g.matte,
                     solid: g.solid,
-                    entering: g.solid != NO_SOLID && g.entering[(order & 0xffff_ffff) as usize],
+                    entering: ccw == g.ccw_enters,
                 });
                 // A solid's surface may yet be carved away, so it hides nothing behind it.
                 if o.min_element() >= 1.0 && g.solid == NO_SOLID {

@@ -24,6 +24,6 @@ pub use camera::Camera;
 pub use declarations::Declarations;
 pub use diagnostic::{Diagnostic, Diagnostics, Severity};
 pub use frame::{Frame, FramePrimitive};
-pub use solid::{SolidNode, SolidOp, SolidTree};
 pub use options::{DepthFilter, DisplaySpec, Options, Projection, QuantizeSpec};
+pub use solid::{SolidNode, SolidOp, SolidTree};
 pub use state::{from_rib_diagnostic, RequestSource, Ri, StreamParser, TextureMaker};

@@ -1182,11 +1182,13 @@ impl Ri {
     /// surface directly inside a union/intersection/difference, a primitive solid of its own.
     fn solid_leaf(&mut self) -> Option<u32> {
         let top = *self.open_solids.last()?;
-        Some(if self.solids.nodes[top as usize].op == SolidOp::Primitive {
-            top
-        } else {
-            self.solids.add(SolidOp::Primitive, Some(top))
-        })
+        Some(
+            if self.solids.nodes[top as usize].op == SolidOp::Primitive {
+                top
+            } else {
+                self.solids.add(SolidOp::Primitive, Some(top))
+            },
+        )
     }
 
     // ---- geometry ------------------------------------------------------------------------
