@@ -262,3 +262,88 @@ fn bad_nesting_is_reported_with_its_position_and_renders() {
         "{text:#?}"
     );
 }
+
+/// Perspective: a unit sphere 5 units ahead minus a tube of radius 0.3 along the view axis.
+/// A ray of radial slope t (radius t·z at depth z) sees, in closed form: the sphere's entry
+/// when it never is inside the tube there; the tube's inner wall at depth 0.3/t where it
+/// leaves the tube inside the sphere; nothing (alpha 0) where it leaves it behind the sphere.
+#[test]
+fn perspective_difference_shows_the_tube_wall_at_its_analytic_depth() {
+    let rib = format!(
+        "Format 100 100 1\nProjection \"perspective\" \"fov\" [40]\nPixelSamples 4 4\n\
+         PixelFilter \"box\" 1 1\nWorldBegin\nSurface \"matte\"\nTranslate 0 0 5\n\
+         SolidBegin \"difference\"\n{}{}SolidEnd\nWorldEnd\n",
+        sphere(1.0, [0.0; 3]),
+        tube(0.3, -2.0, 2.0)
+    );
+    let r = render_one(&rib);
+    let half = 20f64.to_radians().tan();
+    // Sphere entry and exit depths along slope t: (1 + t²)z² − 10z + 24 = 0.
+    let sphere_hits = |t: f64| {
+        let a = 1.0 + t * t;
+        let disc = (100.0 - 96.0 * a).sqrt();
+        ((10.0 - disc) / (2.0 * a), (10.0 + disc) / (2.0 * a))
+    };
+    // One pixel is 0.02 in screen units; samples reach half a diagonal from the centre.
+    let dt = 0.0142 * half;
+    let (mut wall, mut hole, mut front) = (0, 0, 0);
+    for py in 0..100 {
+        for px in 0..100 {
+            let (sx, sy) = (
+                -1.0 + (px as f64 + 0.5) / 50.0,
+                1.0 - (py as f64 + 0.5) / 50.0,
+            );
+            let t = sx.hypot(sy) * half;
+            let z_in = sphere_hits(t).0;
+            // Which surface the ray sees, judged at both ends of the pixel's slope range.
+            let kind = |t: f64| {
+                let (z_in, z_out) = sphere_hits(t);
+                let z_wall = 0.3 / t;
+                if t >= 0.1 || z_wall < z_in {
+                    0 // enters the sphere outside the tube
+                } else if z_wall < z_out {
+                    1 // leaves the tube inside the sphere: the wall
+                } else {
+                    2 // leaves it behind the sphere: see-through
+                }
+            };
+            if sphere_hits(t + 2.0 * dt).0.is_nan() || kind(t - 2.0 * dt) != kind(t + 2.0 * dt) {
+                continue;
+            }
+            let k = py * 100 + px;
+            let (z, a) = (f64::from(r.z[k]), r.rgba[k * 4 + 3]);
+            match kind(t) {
+                0 => {
+                    // The pixel's depth range plus the dicing's chord error.
+                    let spread = [t - dt, t + dt]
+                        .map(|t| (sphere_hits(t).0 - z_in).abs())
+                        .into_iter()
+                        .fold(0.0, f64::max);
+                    let tol = spread + 0.01;
+                    assert!((z - z_in).abs() < tol, "({px}, {py}) front: {z} vs {z_in}");
+                    front += 1;
+                }
+                1 => {
+                    let z_wall = 0.3 / t;
+                    // The wall's depth changes by 0.3/t² per unit slope across the pixel.
+                    let tol = 0.3 / (t * t) * dt + 0.01;
+                    assert!(
+                        (z - z_wall).abs() < tol,
+                        "({px}, {py}) wall: {z} vs {z_wall}"
+                    );
+                    assert_eq!(a, 1.0, "({px}, {py}) wall alpha");
+                    wall += 1;
+                }
+                _ => {
+                    assert_eq!(a, 0.0, "({px}, {py}) see-through alpha");
+                    hole += 1;
+                }
+            }
+        }
+    }
+    eprintln!("perspective: {front} front, {wall} wall, {hole} see-through pixels checked");
+    assert!(
+        front > 1000 && wall > 20 && hole > 50,
+        "{front} {wall} {hole}"
+    );
+}

@@ -124,10 +124,12 @@ struct VisiblePoint {
     c: Vec3,
     o: Vec3,
     matte: bool,
-    /// For CSG (see `csg.rs`): primitive solid ([`NO_SOLID`] for none), entering hit.
-    solid: u32,
+    /// For CSG (see `csg.rs`): an entering hit. The primitive solid is found through the
+    /// piece index in `order`, which keeps the point at 40 bytes, as without CSG.
     entering: bool,
 }
+
+const _: () = assert!(std::mem::size_of::<VisiblePoint>() <= 40);
 
 #[derive(Default)]
 struct Counters {
@@ -540,7 +542,11 @@ fn render_bucket(
             l.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.order.cmp(&b.order)));
             if let Some(s) = &solids {
                 // Only opaque surfaces outside solids set `opaque_z` and cut lists short.
-                s.resolve(l, oz.is_infinite(), |vp| (vp.solid, vp.entering));
+                s.resolve(l, oz.is_infinite(), |vp| {
+                    let prim = pieces[(vp.order >> 32) as usize].prim_index;
+                    let solid = frame.primitives.get(prim).and_then(|fp| fp.solid);
+                    (solid.unwrap_or(NO_SOLID), vp.entering)
+                });
             }
             let mut c = Vec3::ZERO;
             let mut t = Vec3::ONE;
@@ -727,7 +733,6 @@ fn sample_triangle(
                     c,
                     o,
                     matte: g.matte,
-                    solid: g.solid,
                     entering: ccw == g.ccw_enters,
                 });
                 // A solid's surface may yet be carved away, so it hides nothing behind it.
