@@ -347,3 +347,32 @@ fn perspective_difference_shows_the_tube_wall_at_its_analytic_depth() {
         "{front} {wall} {hole}"
     );
 }
+
+/// What the RI state hands the hider: one leaf per primitive solid (however many requests
+/// bound it), a leaf of its own for a bare surface inside an operation, and the surfaces of a
+/// solid nested in a primitive solid joining that primitive.
+#[test]
+fn frames_carry_the_solid_tree() {
+    let f = support::frames(
+        "WorldBegin\nSphere 1 -1 1 360\nSolidBegin \"difference\"\n\
+         SolidBegin \"primitive\"\nCylinder 1 0 1 360\nDisk 0 1 360\nDisk 1 1 360\n\
+         SolidBegin \"union\"\nSphere 2 -2 2 360\nSolidEnd\nSolidEnd\n\
+         Sphere 0.5 -0.5 0.5 360\nSolidEnd\nWorldEnd\n",
+        None,
+    );
+    let solids: Vec<Option<u32>> = f[0].primitives.iter().map(|p| p.solid).collect();
+    let t = &f[0].solids;
+    assert_eq!(solids.len(), 6);
+    assert_eq!(solids[0], None);
+    let leaf = solids[1].unwrap();
+    assert!(solids[1..5].iter().all(|&s| s == Some(leaf)), "{solids:?}");
+    let bare = solids[5].unwrap();
+    assert_ne!(bare, leaf);
+    let root = t.root(leaf);
+    assert_eq!(t.root(bare), root);
+    assert_eq!(t.nodes[root as usize].op, illume_ri::SolidOp::Difference);
+    assert_eq!(t.nodes[root as usize].children, vec![leaf, bare]);
+    // Inside the first child only: inside the difference; inside both: not.
+    assert!(t.contains(root, &|l| l == leaf));
+    assert!(!t.contains(root, &|_| true));
+}
