@@ -1165,7 +1165,7 @@ impl Ri {
         });
         let parent = self.open_solids.last().copied();
         let node = match parent {
-            Some(p) if self.solids.nodes[p as usize].op == SolidOp::Primitive => {
+            Some(p) if self.is_primitive_solid(p) => {
                 self.diagnostics.warn(
                     span,
                     "SolidBegin",
@@ -1182,13 +1182,18 @@ impl Ri {
     /// surface directly inside a union/intersection/difference, a primitive solid of its own.
     fn solid_leaf(&mut self) -> Option<u32> {
         let top = *self.open_solids.last()?;
-        Some(
-            if self.solids.nodes[top as usize].op == SolidOp::Primitive {
-                top
-            } else {
-                self.solids.add(SolidOp::Primitive, Some(top))
-            },
-        )
+        Some(if self.is_primitive_solid(top) {
+            top
+        } else {
+            self.solids.add(SolidOp::Primitive, Some(top))
+        })
+    }
+
+    fn is_primitive_solid(&self, node: u32) -> bool {
+        self.solids
+            .nodes
+            .get(node as usize)
+            .is_some_and(|n| n.op == SolidOp::Primitive)
     }
 
     // ---- geometry ------------------------------------------------------------------------
