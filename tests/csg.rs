@@ -376,3 +376,48 @@ fn frames_carry_the_solid_tree() {
     assert!(t.contains(root, &|l| l == leaf));
     assert!(!t.contains(root, &|_| true));
 }
+
+/// A primitive solid on its own is its closed surface seen from outside: the same depth as
+/// rendering the surface `Sides 1`, whatever the primitive type, and under a mirroring
+/// transform whose orientation is set back to "outside" (the raster winding flips, and so
+/// must the entering test). This checks that the hider's entering/exiting test agrees with its
+/// back-face culling. Compared where both renders cover the whole pixel (silhouette pixels may
+/// differ by a grazing sample). Convex solids only: where a surface folds over itself (a
+/// torus's inner rim) `Sides 1` culls by corner-vertex normals and the solid by each
+/// triangle's winding, which differ for micropolygons straddling the fold.
+#[test]
+fn a_lone_primitive_solid_matches_its_one_sided_surface() {
+    let cube =
+        "PointsPolygons [4 4 4 4 4 4] [0 3 2 1  4 5 6 7  0 1 5 4  3 7 6 2  0 4 7 3  1 2 6 5] \
+                \"P\" [-1 -1 -1  1 -1 -1  1 1 -1  -1 1 -1  -1 -1 1  1 -1 1  1 1 1  -1 1 1]";
+    let surfaces = [
+        "Sphere 1.2 -1.2 1.2 360".to_string(),
+        format!("Rotate 30 1 1 0 Scale 0.8 0.8 0.8 {cube}"),
+    ];
+    for surface in &surfaces {
+        for prefix in [
+            "",
+            "Scale -1 1 1 Orientation \"outside\"",
+            "ReverseOrientation ReverseOrientation",
+        ] {
+            let body = format!("{prefix} {surface}");
+            let csg = render_one(&scene(&format!(
+                "SolidBegin \"primitive\"\n{body}\nSolidEnd"
+            )));
+            let one_sided = render_one(&scene(&format!("Sides 1\n{body}")));
+            let mut compared = 0;
+            for k in 0..200 * 200 {
+                if csg.rgba[k * 4 + 3] < 1.0 || one_sided.rgba[k * 4 + 3] < 1.0 {
+                    continue;
+                }
+                let (a, b) = (csg.z[k], one_sided.z[k]);
+                assert!(
+                    (a - b).abs() < 1e-5,
+                    "{body}: pixel {k}: depth {a} as a solid, {b} one-sided"
+                );
+                compared += 1;
+            }
+            assert!(compared > 1000, "{body}: only {compared} pixels compared");
+        }
+    }
+}
