@@ -1,6 +1,7 @@
 //! The bucket loop: pieces overlapping each bucket, nearest first; shared grids diced and
 //! shaded once (by whichever bucket needs them first); micropolygons sampled into visible-point
 //! lists; lists composited front to back; pixel filter; exposure.
+use crate::csg::{SolidResolver, NO_SOLID};
 use crate::filter::PixelFilter;
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
 use crate::sampling::sample_position;
@@ -23,6 +24,11 @@ struct ShadedGrid {
     oi: Vec<Vec3>,
     /// Per micropolygon: culled as a back face (Sides 1).
     backface: Vec<bool>,
+    /// The primitive solid this grid bounds ([`NO_SOLID`] for none).
+    solid: u32,
+    /// Whether a micropolygon triangle wound counter-clockwise in raster space faces the eye
+    /// (faces along the outward normal: an entering hit), given the grid's orientation.
+    ccw_enters: bool,
     /// Outward reach (raster pixels) of each border segment, for the rows `j = 0`,
     /// `j = nv−1` and the columns `i = 0`, `i = nu−1`: see [`seam_reach`].
     seam: [Vec<f64>; 4],
@@ -150,7 +156,12 @@ struct VisiblePoint {
     c: Vec3,
     o: Vec3,
     matte: bool,
+    /// For CSG (see `csg.rs`): an entering hit. The primitive solid is found through the
+    /// piece index in `order`, which keeps the point at 40 bytes, as without CSG.
+    entering: bool,
 }
+
+const _: () = assert!(std::mem::size_of::<VisiblePoint>() <= 40);
 
 #[derive(Default)]
 struct Counters {
@@ -527,7 +538,18 @@ fn dice_and_shade(
     } else {
         vec![false; (nu - 1) * (nv - 1)]
     };
-    if a.sides == 1 {
+    // A solid's back faces are never culled: they are where a ray leaves it, which CSG needs
+    // to know, and a difference shows the subtracted solid's far wall. The surface shaders
+    // shade them with `faceforward(N, I)`, so that wall is lit as seen from inside.
+    let solid = frame
+        .primitives
+        .get(piece.prim_index)
+        .and_then(|fp| fp.solid)
+        .unwrap_or(NO_SOLID);
+    // Whether a solid's hit enters it is judged per triangle from its raster winding (see
+    // `ccw_enters`), not from the vertex normals: those vanish at a sphere's poles, and the
+    // winding is exactly what the sampler sees.
+    if solid == NO_SOLID && a.sides == 1 {
         for j in 0..nv - 1 {
             for i in 0..nu - 1 {
                 let k = j * nu + i;
@@ -564,6 +586,8 @@ fn dice_and_shade(
         ci: shaded.ci,
         oi: shaded.oi,
         backface,
+        solid,
+        ccw_enters: flip > 0.0,
         seam,
         matte: a.matte,
         smooth: a.smooth_shading,
@@ -720,10 +744,20 @@ fn render_bucket(
 
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();
+    let solids = SolidResolver::new(&frame.solids);
     let composited: Vec<([f32; 4], f32, f32)> = lists
         .iter_mut()
-        .map(|l| {
+        .zip(&opaque_z)
+        .map(|(l, oz)| {
             l.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.order.cmp(&b.order)));
+            if let Some(s) = &solids {
+                // Only opaque surfaces outside solids set `opaque_z` and cut lists short.
+                s.resolve(l, oz.is_infinite(), |vp| {
+                    let prim = pieces[(vp.order >> 32) as usize].prim_index;
+                    let solid = frame.primitives.get(prim).and_then(|fp| fp.solid);
+                    (solid.unwrap_or(NO_SOLID), vp.entering)
+                });
+            }
             let mut c = Vec3::ZERO;
             let mut t = Vec3::ONE;
             let mut alpha = 0.0f32;
@@ -834,6 +868,7 @@ fn sample_triangle(
     if ar == 0.0 || !ar.is_finite() {
         return;
     }
+    let ccw = ar > 0.0;
     if ar < 0.0 {
         v.swap(1, 2);
         idx.swap(1, 2);
@@ -908,8 +943,10 @@ fn sample_triangle(
                     c,
                     o,
                     matte: g.matte,
+                    entering: ccw == g.ccw_enters,
                 });
-                if o.min_element() >= 1.0 {
+                // A solid's surface may yet be carved away, so it hides nothing behind it.
+                if o.min_element() >= 1.0 && g.solid == NO_SOLID {
                     opaque_z[s] = z;
                 }
             }

@@ -4,6 +4,7 @@
 //! → exposure. Buckets run in parallel (rayon); results are identical for any thread count.
 #![forbid(unsafe_code)]
 
+mod csg;
 pub mod display;
 pub mod filter;
 mod frame_loop;

@@ -2,6 +2,7 @@
 use crate::attributes::{Attributes, Light};
 use crate::camera::Camera;
 use crate::options::Options;
+use crate::solid::SolidTree;
 use illume_geom::Primitive;
 use illume_rib::Span;
 use std::sync::Arc;
@@ -13,6 +14,9 @@ pub struct FramePrimitive {
     pub attributes: Arc<Attributes>,
     /// The request that made it, for the hider's warnings.
     pub span: Span,
+    /// The primitive solid (a leaf of [`Frame::solids`]) whose boundary this surface is part
+    /// of, `None` outside `SolidBegin`/`SolidEnd`.
+    pub solid: Option<u32>,
 }
 
 /// A complete frame: camera, options, lights, and every primitive of the world block.
@@ -25,6 +29,8 @@ pub struct Frame {
     /// Every light declared in the world (a re-used handle replaced the older light in place).
     pub lights: Vec<Light>,
     pub primitives: Vec<FramePrimitive>,
+    /// The CSG solids the primitives' `solid` leaves belong to (empty without `SolidBegin`).
+    pub solids: SolidTree,
     /// Named coordinate systems (`CoordinateSystem`), camera from that space.
     pub coordinate_systems: Vec<(String, glam::DMat4)>,
 }

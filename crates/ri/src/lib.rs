@@ -15,6 +15,7 @@ pub mod diagnostic;
 pub mod frame;
 pub mod options;
 pub mod paramlist;
+pub mod solid;
 pub mod state;
 pub mod transform;
 
@@ -24,4 +25,5 @@ pub use declarations::Declarations;
 pub use diagnostic::{Diagnostic, Diagnostics, Severity};
 pub use frame::{Frame, FramePrimitive};
 pub use options::{DepthFilter, DisplaySpec, Options, Projection, QuantizeSpec};
+pub use solid::{SolidNode, SolidOp, SolidTree};
 pub use state::{from_rib_diagnostic, RequestSource, Ri, StreamParser, TextureMaker};

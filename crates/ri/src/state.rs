@@ -7,6 +7,7 @@ use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::frame::{Frame, FramePrimitive};
 use crate::options::{expand_search_path, DepthFilter, DisplaySpec, Options, QuantizeSpec};
 use crate::paramlist;
+use crate::solid::{SolidOp, SolidTree};
 use crate::transform;
 use glam::{DMat4, DVec3};
 use illume_geom::{BuildContext, GeomError};
@@ -79,6 +80,10 @@ pub struct Ri {
     coordinate_systems: HashMap<String, DMat4>,
     lights: Vec<Light>,
     primitives: Vec<FramePrimitive>,
+    /// This world's CSG solids, and the node each open `SolidBegin` stands for (a solid
+    /// nested in a primitive solid stands for that primitive: its surfaces join it).
+    solids: SolidTree,
+    open_solids: Vec<u32>,
     frame_number: Option<i32>,
     camera: Option<Camera>,
     world_active: bool,
@@ -112,6 +117,8 @@ impl Ri {
             coordinate_systems: HashMap::new(),
             lights: Vec::new(),
             primitives: Vec::new(),
+            solids: SolidTree::default(),
+            open_solids: Vec::new(),
             frame_number: None,
             camera: None,
             world_active: true,
@@ -249,18 +256,7 @@ impl Ri {
             AttributeBegin => self.push_block(BlockKind::Attribute, &span),
             TransformBegin => self.push_block(BlockKind::Transform, &span),
             SolidBegin(op) => {
-                if !matches!(
-                    op.as_str(),
-                    "primitive" | "union" | "intersection" | "difference"
-                ) {
-                    self.diagnostics
-                        .error(&span, &name, format!("unknown operation `{op}`"));
-                }
-                self.diagnostics.warn(
-                    &span,
-                    &name,
-                    "constructive solid geometry not supported yet: primitives render as if unioned",
-                );
+                self.solid_begin(&op, &span);
                 self.push_block(BlockKind::Solid, &span);
             }
             MotionBegin(_) => {
@@ -389,7 +385,10 @@ impl Ri {
         let Some(b) = self.blocks.pop() else { return };
         match b.kind {
             BlockKind::Transform => self.ctm = b.ctm,
-            BlockKind::Solid | BlockKind::Motion => {}
+            BlockKind::Solid => {
+                self.open_solids.pop();
+            }
+            BlockKind::Motion => {}
             BlockKind::Attribute => {
                 self.ctm = b.ctm;
                 self.attributes = b.attributes;
@@ -441,6 +440,8 @@ impl Ri {
             options.crop = c;
         }
         let primitives = std::mem::take(&mut self.primitives);
+        let solids = std::mem::take(&mut self.solids);
+        self.open_solids.clear();
         if self.world_active {
             self.frames.push(Frame {
                 number: self.frame_number,
@@ -448,6 +449,7 @@ impl Ri {
                 camera,
                 lights: self.lights.clone(),
                 primitives,
+                solids,
                 coordinate_systems: self
                     .coordinate_systems
                     .iter()
@@ -1163,6 +1165,52 @@ impl Ri {
         }
     }
 
+    // ---- solids --------------------------------------------------------------------------
+
+    /// Opens a CSG node under the innermost open solid. The caller pushes the block, so
+    /// `SolidEnd` and block recovery pop `open_solids` in step with the block stack.
+    fn solid_begin(&mut self, op: &str, span: &Span) {
+        let op = SolidOp::from_token(op).unwrap_or_else(|| {
+            self.diagnostics.error(
+                span,
+                "SolidBegin",
+                format!("unknown operation `{op}` (treated as \"union\")"),
+            );
+            SolidOp::Union
+        });
+        let parent = self.open_solids.last().copied();
+        let node = match parent {
+            Some(p) if self.is_primitive_solid(p) => {
+                self.diagnostics.warn(
+                    span,
+                    "SolidBegin",
+                    "a primitive solid can not contain solids: this block's surfaces join the enclosing primitive solid",
+                );
+                p
+            }
+            _ => self.solids.add(op, parent),
+        };
+        self.open_solids.push(node);
+    }
+
+    /// The primitive solid the next geometry bounds: the open primitive solid, or, for a
+    /// surface directly inside a union/intersection/difference, a primitive solid of its own.
+    fn solid_leaf(&mut self) -> Option<u32> {
+        let top = *self.open_solids.last()?;
+        Some(if self.is_primitive_solid(top) {
+            top
+        } else {
+            self.solids.add(SolidOp::Primitive, Some(top))
+        })
+    }
+
+    fn is_primitive_solid(&self, node: u32) -> bool {
+        self.solids
+            .nodes
+            .get(node as usize)
+            .is_some_and(|n| n.op == SolidOp::Primitive)
+    }
+
     // ---- geometry ------------------------------------------------------------------------
 
     fn geometry(&mut self, req: &Request, span: &Span) {
@@ -1189,11 +1237,13 @@ impl Ri {
         };
         match illume_geom::build(req, &ctx) {
             Ok(prims) => {
+                let solid = self.solid_leaf();
                 for p in prims {
                     self.primitives.push(FramePrimitive {
                         primitive: p,
                         attributes: self.attributes.clone(),
                         span: span.clone(),
+                        solid,
                     });
                 }
             }

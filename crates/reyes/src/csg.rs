@@ -1,0 +1,195 @@
+//! Constructive solid geometry resolved in a sample's visible-point list (RI Spec 3.2 §5.8).
+//!
+//! The classic REYES way: every visible point on a solid's surface knows its primitive solid
+//! and whether it is an *entering* hit (front-facing with respect to the solid's outward
+//! normal) or an *exiting* one. Walking the depth-sorted list front to back, each hit sets its
+//! primitive solid's inside/outside state; the point is kept only where that changes whether
+//! the sample ray is inside the composite solid (the tree's root), because that is where the
+//! composite's surface is. Points of primitives outside any solid pass through untouched.
+//!
+//! Assumption: the eye starts outside every solid. A camera inside a solid sees it as if it
+//! were outside it (the first exiting hit of a solid it never entered is dropped).
+//!
+//! Hits *set* the state rather than count it: a grid border reaches a little outward so that
+//! neighbouring grids overlap (see the hider's `seam_reach`), and a sample in that overlap sees
+//! the same surface twice; a second entering hit must not count as being "twice inside".
+use illume_ri::SolidTree;
+
+/// The solid id of a visible point on a primitive that bounds no solid.
+pub(crate) const NO_SOLID: u32 = u32::MAX;
+
+/// A frame's solids, ready to resolve visible-point lists.
+pub(crate) struct SolidResolver<'a> {
+    tree: &'a SolidTree,
+    /// The root of each node, so an event only re-evaluates its own tree.
+    roots: Vec<u32>,
+}
+
+impl<'a> SolidResolver<'a> {
+    /// `None` when the frame has no solids: the hider then skips resolution entirely.
+    pub fn new(tree: &'a SolidTree) -> Option<SolidResolver<'a>> {
+        if tree.is_empty() {
+            return None;
+        }
+        let roots = (0..tree.nodes.len() as u32).map(|n| tree.root(n)).collect();
+        Some(SolidResolver { tree, roots })
+    }
+
+    /// Removes from a depth-sorted list the solid hits that are not on the composite surface.
+    /// `event` gives a point's primitive solid ([`NO_SOLID`] for none) and whether it enters.
+    /// `complete`: no opaque surface cut the list short (see [`Self::unmatched_entries`]).
+    pub fn resolve<T>(&self, list: &mut Vec<T>, complete: bool, event: impl Fn(&T) -> (u32, bool)) {
+        if list.iter().all(|p| event(p).0 == NO_SOLID) {
+            return;
+        }
+        let spurious = if complete {
+            unmatched_entries(list.iter().map(&event))
+        } else {
+            Vec::new()
+        };
+        // The primitive solids this sample is inside (a list: a sample meets few solids).
+        let mut inside: Vec<u32> = Vec::new();
+        let mut index = 0;
+        list.retain(|p| {
+            let (leaf, entering) = event(p);
+            index += 1;
+            if leaf == NO_SOLID {
+                return true;
+            }
+            if spurious.contains(&(index - 1)) {
+                return false;
+            }
+            let pos = inside.iter().position(|&l| l == leaf);
+            if pos.is_some() == entering {
+                // Already in that state: a repeated hit, or leaving a solid never entered.
+                return false;
+            }
+            let Some(&root) = self.roots.get(leaf as usize) else {
+                return true;
+            };
+            let before = self.tree.contains(root, &|l| inside.contains(&l));
+            match pos {
+                Some(k) => {
+                    inside.swap_remove(k);
+                }
+                None => inside.push(leaf),
+            }
+            let after = self.tree.contains(root, &|l| inside.contains(&l));
+            before != after
+        });
+    }
+}
+
+/// Indices of entering hits that a closed surface never matched with an exit behind them.
+///
+/// Why: at a solid's silhouette the front and back micropolygons are diced separately, so
+/// their polygonal outlines differ by a sliver, and a sample in the sliver hits only the
+/// front. Taken at face value the ray would stay inside that solid to infinity and, say,
+/// carve a thin dark ring out of whatever it is subtracted from. A ray that leaves every
+/// closed surface it enters (when nothing opaque cut the list short) shows such an entry
+/// was a graze: it is ignored. (A graze that hits only the back is already ignored: an exit
+/// from a solid never entered.)
+fn unmatched_entries(events: impl Iterator<Item = (u32, bool)>) -> Vec<usize> {
+    // (primitive solid, index of the entry that made the ray inside it, if it still is).
+    let mut state: Vec<(u32, Option<usize>)> = Vec::new();
+    for (i, (leaf, entering)) in events.enumerate() {
+        if leaf == NO_SOLID {
+            continue;
+        }
+        match state.iter_mut().find(|s| s.0 == leaf) {
+            Some(s) => match (s.1, entering) {
+                (None, true) => s.1 = Some(i),
+                (Some(_), false) => s.1 = None,
+                _ => {}
+            },
+            None => state.push((leaf, entering.then_some(i))),
+        }
+    }
+    state.into_iter().filter_map(|s| s.1).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use illume_ri::SolidOp;
+
+    /// A 1-D ray through A = [0, 4] minus B = [1, 2] and a plain surface at 3: A − B is
+    /// [0, 1) ∪ (2, 4], so its surfaces are A's entry at 0, B's near wall at 1 (leaving the
+    /// composite into the hole), B's far wall at 2 (re-entering it) and A's exit at 4.
+    #[test]
+    fn difference_keeps_the_composite_boundary() {
+        let mut t = SolidTree::default();
+        let d = t.add(SolidOp::Difference, None);
+        let a = t.add(SolidOp::Primitive, Some(d));
+        let b = t.add(SolidOp::Primitive, Some(d));
+        let r = SolidResolver::new(&t).unwrap();
+        // (depth, solid, entering)
+        let mut l = vec![
+            (0.0, a, true),
+            (0.0, a, true), // seam duplicate
+            (1.0, b, true),
+            (2.0, b, false),
+            (3.0, NO_SOLID, true),
+            (4.0, a, false),
+            (5.0, b, false), // leaves a solid it never entered
+        ];
+        r.resolve(&mut l, false, |p| (p.1, p.2));
+        let z: Vec<f64> = l.iter().map(|p| p.0).collect();
+        assert_eq!(z, [0.0, 1.0, 2.0, 3.0, 4.0]);
+    }
+
+    /// A ray that enters B before A: A's entry inside B is not on A − B, nor is B's front.
+    #[test]
+    fn subtracted_solid_in_front_hides_the_first_solid() {
+        let mut t = SolidTree::default();
+        let d = t.add(SolidOp::Difference, None);
+        let a = t.add(SolidOp::Primitive, Some(d));
+        let b = t.add(SolidOp::Primitive, Some(d));
+        let u = t.add(SolidOp::Union, None);
+        let c = t.add(SolidOp::Primitive, Some(u));
+        let r = SolidResolver::new(&t).unwrap();
+        let mut l = vec![
+            (0.0, b, true),
+            (0.5, c, true),
+            (1.0, a, true),
+            (2.0, b, false),
+            (3.0, a, false),
+            (4.0, c, false),
+        ];
+        r.resolve(&mut l, false, |p| (p.1, p.2));
+        let z: Vec<f64> = l.iter().map(|p| p.0).collect();
+        assert_eq!(z, [0.5, 2.0, 3.0, 4.0]);
+        assert!(SolidResolver::new(&SolidTree::default()).is_none());
+    }
+
+    /// A − B where the ray grazes B's front at its silhouette and never hits B's back: with
+    /// a complete list the graze is ignored and A's entry stays; a list cut short by an
+    /// opaque surface can not tell a graze from an exit hidden behind it.
+    #[test]
+    fn a_graze_on_a_silhouette_enters_nothing() {
+        let mut t = SolidTree::default();
+        let d = t.add(SolidOp::Difference, None);
+        let a = t.add(SolidOp::Primitive, Some(d));
+        let b = t.add(SolidOp::Primitive, Some(d));
+        let r = SolidResolver::new(&t).unwrap();
+        let graze = vec![(0.0, b, true), (1.0, a, true), (2.0, a, false)];
+        let mut l = graze.clone();
+        r.resolve(&mut l, true, |p| (p.1, p.2));
+        let z: Vec<f64> = l.iter().map(|p| p.0).collect();
+        assert_eq!(z, [1.0, 2.0]);
+        let mut l = graze;
+        r.resolve(&mut l, false, |p| (p.1, p.2));
+        assert!(l.is_empty());
+        // B entered twice (a seam duplicate) and left once is matched.
+        let mut l = vec![
+            (0.0, b, true),
+            (0.0, b, true),
+            (0.5, a, true),
+            (1.0, b, false),
+            (2.0, a, false),
+        ];
+        r.resolve(&mut l, true, |p| (p.1, p.2));
+        let z: Vec<f64> = l.iter().map(|p| p.0).collect();
+        assert_eq!(z, [1.0, 2.0]);
+    }
+}
