@@ -25,7 +25,7 @@ use crate::blobby_field::{BlobbyField, THRESHOLD};
 use crate::parametric::{
     default_st, with_default_st, Field, FieldRef, Interp, Parametric, Surface, SurfaceVar,
 };
-use crate::polygonize::{bracketed_root, marching_tetrahedra, Lattice};
+use crate::polygonize::{bracketed_root, marching_tetrahedra, Lattice, TriangleMesh};
 use crate::primvar::{camera_values, is_position, resolve, ClassCounts, PrimVarData};
 use crate::{Bound, BuildContext, GeomError, Primitive};
 use glam::{DMat3, DMat4, DVec3};
@@ -94,27 +94,11 @@ pub fn build_blobby(
     if !(lo.is_finite() && hi.is_finite()) {
         return Err(invalid("the bound of the leaves is not finite".to_string()));
     }
-    let cells =
-        cells_for([lo.x, hi.x, lo.y, hi.y, lo.z, hi.z].map(|x| x as f32)).clamp(1, MAX_CELLS);
-    let extent = (hi - lo).max_element();
-    if extent <= 0.0 {
-        return Ok((Vec::new(), warnings));
-    }
-    let h = extent / cells as f64;
-    // One cell of margin on each side so the surface never touches the lattice boundary.
-    let n = ((hi - lo) / h)
-        .ceil()
-        .as_uvec3()
-        .to_array()
-        .map(|c| c as usize + 3);
-    let lattice = Lattice {
-        origin: lo - DVec3::splat(h),
-        h,
-        n,
-    };
+    let cells = cells_for([lo.x, hi.x, lo.y, hi.y, lo.z, hi.z].map(|x| x as f32));
     let field = Arc::new(field);
-    let f = field.clone();
-    let mesh = marching_tetrahedra(&lattice, &move |p| f.value(p), THRESHOLD);
+    let Some((mesh, h)) = isosurface_mesh(&field, cells) else {
+        return Ok((Vec::new(), warnings));
+    };
 
     let m = ctx.camera_from_object;
     let shared = Arc::new(Shared {
@@ -172,6 +156,30 @@ pub fn build_blobby(
         )));
     }
     Ok((out, warnings))
+}
+
+/// The object-space marching-tetrahedra mesh of `field = THRESHOLD` on a lattice of `cells`
+/// cells along the longest side of the influence box (plus one cell of margin all round, so
+/// the surface never touches the lattice boundary), with the cell size; `None` without a
+/// geometric leaf or for an empty bound.
+pub fn isosurface_mesh(field: &Arc<BlobbyField>, cells: usize) -> Option<(TriangleMesh, f64)> {
+    let (lo, hi) = field.influence_box()?;
+    let extent = (hi - lo).max_element();
+    if !(extent > 0.0 && extent.is_finite()) {
+        return None;
+    }
+    let h = extent / cells.clamp(1, MAX_CELLS) as f64;
+    let n = ((hi - lo) / h).ceil().to_array().map(|c| c as usize + 3);
+    let lattice = Lattice {
+        origin: lo - DVec3::splat(h),
+        h,
+        n,
+    };
+    let f = field.clone();
+    Some((
+        marching_tetrahedra(&lattice, &move |p| f.value(p), THRESHOLD),
+        h,
+    ))
 }
 
 /// A user primitive variable, in camera space.
