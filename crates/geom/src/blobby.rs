@@ -43,6 +43,9 @@ pub const MAX_CELLS: usize = 128;
 /// Resolution when the raster size is unknown (`geom::build` without a camera).
 pub const DEFAULT_CELLS: usize = 48;
 
+/// The pieces of a built `Blobby` and its warnings (parts not supported).
+pub type Built = (Vec<Box<dyn Primitive>>, Vec<String>);
+
 /// The raw arguments of a `Blobby` request.
 pub struct BlobbyArgs<'a> {
     pub nleaf: i32,
@@ -70,7 +73,7 @@ pub fn build_blobby(
     params: &ParamList,
     ctx: &BuildContext,
     cells_for: &dyn Fn([f32; 6]) -> usize,
-) -> Result<(Vec<Box<dyn Primitive>>, Vec<String>), GeomError> {
+) -> Result<Built, GeomError> {
     let invalid = |message: String| GeomError::Invalid {
         request: "Blobby".to_string(),
         message,

@@ -158,7 +158,7 @@ impl BlobbyField {
                     let f = float_block(next("float index")?, 23)?;
                     let v = |k: usize| DVec3::new(f[k].into(), f[k + 1].into(), f[k + 2].into());
                     let r = f64::from(f[6]);
-                    if !(r.is_finite() && r > 0.0) || !v(0).is_finite() || !v(3).is_finite() {
+                    if !(r.is_finite() && r > 0.0 && v(0).is_finite() && v(3).is_finite()) {
                         return Err(format!(
                             "code[{at}]: segment needs finite end points and a positive radius"
                         ));
