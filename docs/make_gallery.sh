@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the README gallery: renders every scene in rib/ch9/, rib/geometry.rib, rib/csg.rib,
+# Regenerates the README gallery: renders every scene in rib/ch9/, rib/geometry.rib, rib/blobby.rib,
+# rib/csg.rib, rib/displacement.rib,
 # rib/bmrt/arealight.rib and the single-RIB form of every pipeline in rib/pipelines/ with a
 # release build of `render`, and converts the images they write to small 8-bit PNGs in
 # docs/gallery/ (with the `to_png` example of illume-imageio, so no outside image tool is
@@ -72,8 +73,9 @@ for rib in "$root"/rib/ch9/*.rib; do
   done
 done
 
-# Other example scenes: the issue-10 geometry, the CSG scene and the BMRT area light.
-for rib in "$root"/rib/geometry.rib "$root"/rib/csg.rib "$root"/rib/bmrt/arealight.rib; do
+# Other example scenes: the issue-10 geometry, Blobby, CSG, displacement and the BMRT area light.
+for rib in "$root"/rib/geometry.rib "$root"/rib/blobby.rib "$root"/rib/csg.rib \
+  "$root"/rib/displacement.rib "$root"/rib/bmrt/arealight.rib; do
   name="$(basename "$rib" .rib)"
   dir="$work/$name"
   mkdir -p "$dir"

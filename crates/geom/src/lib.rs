@@ -18,7 +18,8 @@
 //! Every request builds a list of [`Parametric`] pieces (all diceable): one per quadric, one
 //! per subpatch of a mesh (32 for the teapot), one per convex quad or ear-clipped triangle of a
 //! polygon, one per non-empty knot rectangle of a NuPatch (all sharing one surface), one per
-//! limit-mesh quad of a subdivision mesh, one disk per point, one ribbon per curve segment. Their `(u, v)` run over `[0,1]²` of the piece's own surface; [`Grid::du`]/`dv` are
+//! limit-mesh quad of a subdivision mesh, one disk per point, one ribbon per curve segment, one
+//! isosurface triangle per marching-tetrahedra triangle of a Blobby. Their `(u, v)` run over `[0,1]²` of the piece's own surface; [`Grid::du`]/`dv` are
 //! the steps in those units. Orientation of the raw `dPdu × dPdv`: outward for a quadric with
 //! positive `thetamax` (inward when it is negative, as the u sweep reverses); along the
 //! right-hand rule of the vertex order for polygons and of (u, v) for patches.
@@ -31,6 +32,8 @@
 #![forbid(unsafe_code)]
 
 pub mod basis;
+pub mod blobby;
+pub mod blobby_field;
 pub mod bound;
 pub mod curves;
 pub mod ear_clipping;
@@ -41,6 +44,7 @@ pub mod parametric;
 pub mod patch;
 pub mod points;
 pub mod polygon;
+pub mod polygonize;
 pub mod primvar;
 pub mod quadric;
 pub mod subdivision;
@@ -111,7 +115,8 @@ pub enum GeomError {
 /// Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons (convex or not, with
 /// holes), Patch and PatchMesh (bilinear, bicubic with `ctx.basis`), NuPatch (trimmed by
 /// `ctx.trim_curves`), SubdivisionMesh "catmull-clark", Points, Curves (linear, cubic with the
-/// v basis), `Geometry "teapot"`.
+/// v basis), `Geometry "teapot"`, Blobby (at [`blobby::DEFAULT_CELLS`]; `illume-ri` calls
+/// [`blobby::build_blobby`] itself to size the lattice from the screen).
 /// A zero-area surface (radius 0, `zmin == zmax`, `thetamax` 0) builds an empty list; a
 /// non-finite parameter or transform is [`GeomError::Invalid`].
 pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
@@ -219,6 +224,24 @@ pub fn build(request: &Request, ctx: &BuildContext) -> Result<Vec<Box<dyn Primit
             wrap,
             params,
         } => curves::build_curves(kind, nvertices, wrap, params, ctx),
+        Request::Blobby {
+            nleaf,
+            code,
+            floats,
+            strings,
+            params,
+        } => blobby::build_blobby(
+            &blobby::BlobbyArgs {
+                nleaf: *nleaf,
+                code,
+                floats,
+                strings,
+            },
+            params,
+            ctx,
+            &|_| blobby::DEFAULT_CELLS,
+        )
+        .map(|(prims, _warnings)| prims),
         Request::Geometry { kind, params } if kind == "teapot" => teapot::build_teapot(params, ctx),
         Request::Geometry { kind, .. } => {
             Err(GeomError::Unsupported(format!("Geometry \"{kind}\"")))

@@ -1228,6 +1228,7 @@ impl Ri {
         let decls = &self.declarations;
         let lookup = |n: &str| decls.get(n);
         let a = &self.attributes;
+        let mut blobby_warnings = Vec::new();
         let ctx = BuildContext {
             camera_from_object: self.ctm,
             declarations: &lookup,
@@ -1235,7 +1236,40 @@ impl Ri {
             texture_coordinates: a.texture_coordinates,
             trim_curves: a.trim_curves.clone(),
         };
-        match illume_geom::build(req, &ctx) {
+        let built = match req {
+            Request::Blobby {
+                nleaf,
+                code,
+                floats,
+                strings,
+                params,
+            } => {
+                let args = illume_geom::blobby::BlobbyArgs {
+                    nleaf: *nleaf,
+                    code,
+                    floats,
+                    strings,
+                };
+                let rate = f64::from(a.shading_rate);
+                let cells_for = |b: [f32; 6]| {
+                    let extent = self
+                        .raster_bound(&b, self.ctm)
+                        .map(|r| (r[1] - r[0]).max(r[3] - r[2]));
+                    illume_geom::blobby::cells_for_raster_size(extent, rate)
+                };
+                illume_geom::blobby::build_blobby(&args, params, &ctx, &cells_for).map(
+                    |(prims, warnings)| {
+                        blobby_warnings = warnings;
+                        prims
+                    },
+                )
+            }
+            _ => illume_geom::build(req, &ctx),
+        };
+        for w in blobby_warnings {
+            self.diagnostics.warn(span, req.name(), w);
+        }
+        match built {
             Ok(prims) => {
                 let solid = self.solid_leaf();
                 for p in prims {
