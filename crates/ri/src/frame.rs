@@ -13,6 +13,8 @@ pub struct FramePrimitive {
     pub attributes: Arc<Attributes>,
     /// The request that made it, for the hider's warnings.
     pub span: Span,
+    /// Its later positions when it moves (a motion block, a moving transform or camera).
+    pub motion: Option<crate::motion::MotionKeys>,
 }
 
 /// A complete frame: camera, options, lights, and every primitive of the world block.
