@@ -1413,7 +1413,10 @@ impl Ri {
                 }
             });
             self.ctm = moving.mats[0];
-            self.ctm_motion = (moving.mats.len() > 1).then_some(moving);
+            // Keys that all agree (motion blocks that cancel, as in Aqsis' transmb_test) are
+            // no motion: the primitives stay on the hider's fast path.
+            let moves = moving.mats.iter().any(|m| *m != moving.mats[0]);
+            self.ctm_motion = moves.then_some(moving);
         } else if !transforms.is_empty() {
             (self.ctm, self.ctm_motion) = transforms.swap_remove(0);
         }
