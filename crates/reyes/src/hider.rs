@@ -601,6 +601,7 @@ fn render_bucket(
                 size: [sw, sh],
                 n_per,
                 near_far: [near, far],
+                shutter: opts.shutter,
             };
             let hits = sample_moving_grid(g, m, id, &frame.camera, lens, &mut target);
             counters.samples.fetch_add(hits, Relaxed);
