@@ -47,6 +47,16 @@ impl Lens {
         )
     }
 
+    /// Range of the raster offset (x and y) of points with depths in `[z0, z1]` seen through
+    /// lens position `l`: the offset is `k(z)·l` scaled, `k(z) = R·(1/zf − 1/z)` increasing in
+    /// `z`, so its range is spanned by the two ends.
+    #[inline]
+    pub fn offset_range(&self, z0: f64, z1: f64, l: (f32, f32)) -> ([f64; 2], [f64; 2]) {
+        let (ax, ay) = self.offset(z0, l);
+        let (bx, by) = self.offset(z1, l);
+        ([ax.min(bx), ax.max(bx)], [ay.min(by), ay.max(by)])
+    }
+
     /// Largest raster radius (x, y) of the circle of confusion over depths `[z0, z1]`
     /// (`z0 > 0`): `|1/zf − 1/z|` is largest at one end of the range.
     pub fn blur_radius(&self, z0: f64, z1: f64) -> (f64, f64) {

@@ -181,21 +181,35 @@ pub(crate) fn sample_moving_grid(
             } else {
                 None
             };
-            let pad = [grow + gx + 1e-6, grow + gy + 1e-6];
+            let key_box = [x0, x1, y0, y1];
+            let pad = grow + 1e-6;
             for qy in qy0..=qy1 {
                 for qx in qx0..=qx1 {
                     let base = (qy as usize * sw + qx as usize) * out.n_per;
                     for s in base..base + out.n_per {
                         let (t, l) = out.time_lens[s];
                         let (x, y) = (f64::from(out.pos[s].0), f64::from(out.pos[s].1));
-                        if let Some(boxes) = &sub {
-                            let k = (((f64::from(t) - open) / (close - open)) * n_sub as f64)
-                                .floor()
-                                .clamp(0.0, (n_sub - 1) as f64) as usize;
-                            let b = boxes[k];
-                            if x < b[0] - pad[0] || x > b[1] + pad[0] || y < b[2] - pad[1] || y > b[3] + pad[1] {
-                                continue;
+                        // The pinhole box at this sample's time, shifted by this sample's lens
+                        // offset over the micropolygon's depth range: most candidates end here.
+                        let b = match &sub {
+                            Some(boxes) => {
+                                let k = (((f64::from(t) - open) / (close - open)) * n_sub as f64)
+                                    .floor()
+                                    .clamp(0.0, (n_sub - 1) as f64);
+                                boxes[k as usize]
                             }
+                            None => key_box,
+                        };
+                        let (ex, ey) = match lens {
+                            Some(lens) => lens.offset_range(z0, z1, l),
+                            None => ([0.0; 2], [0.0; 2]),
+                        };
+                        if x < b[0] + ex[0] - pad
+                            || x > b[1] + ex[1] + pad
+                            || y < b[2] + ey[0] - pad
+                            || y > b[3] + ey[1] + pad
+                        {
+                            continue;
                         }
                         let seg = segment(&m.times, f64::from(t));
                         let mut v = [DVec3::ZERO; 4];
