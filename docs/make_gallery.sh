@@ -72,8 +72,8 @@ for rib in "$root"/rib/ch9/*.rib; do
   done
 done
 
-# Other example scenes: the issue-10 geometry and the BMRT area light.
-for rib in "$root"/rib/geometry.rib "$root"/rib/bmrt/arealight.rib; do
+# Other example scenes: the issue-10 geometry, the BMRT area light, motion blur and depth of field.
+for rib in "$root"/rib/geometry.rib "$root"/rib/bmrt/arealight.rib "$root"/rib/motion.rib; do
   name="$(basename "$rib" .rib)"
   dir="$work/$name"
   mkdir -p "$dir"
