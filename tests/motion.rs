@@ -31,7 +31,12 @@ fn ortho(options: &str, world: &str) -> String {
 /// Area of the convex polygon `p` (raster) inside the pixel box `[x, x+1]×[y, y+1]`.
 fn clipped_area(p: &[[f64; 2]], x: f64, y: f64) -> f64 {
     let mut poly = p.to_vec();
-    let planes: [(usize, f64, f64); 4] = [(0, x, 1.0), (0, x + 1.0, -1.0), (1, y, 1.0), (1, y + 1.0, -1.0)];
+    let planes: [(usize, f64, f64); 4] = [
+        (0, x, 1.0),
+        (0, x + 1.0, -1.0),
+        (1, y, 1.0),
+        (1, y + 1.0, -1.0),
+    ];
     for (axis, at, sign) in planes {
         let inside = |q: &[f64; 2]| (q[axis] - at) * sign >= 0.0;
         let mut out = Vec::new();
@@ -92,7 +97,12 @@ fn assert_coverage(r: &Rendered, want: &[f64], what: &str) {
         .zip(want)
         .map(|(g, w)| (g - w).abs())
         .fold(0.0, f64::max);
-    let mean = got.iter().zip(want).map(|(g, w)| (g - w).abs()).sum::<f64>() / got.len() as f64;
+    let mean = got
+        .iter()
+        .zip(want)
+        .map(|(g, w)| (g - w).abs())
+        .sum::<f64>()
+        / got.len() as f64;
     let (sg, sw) = (got.iter().sum::<f64>(), want.iter().sum::<f64>());
     eprintln!("{what}: max |error| {max:.4}, mean {mean:.5}, total {sg:.2} vs {sw:.2}");
     assert!(sw > 20.0, "{what}: reference covers too little to test");
@@ -100,7 +110,10 @@ fn assert_coverage(r: &Rendered, want: &[f64], what: &str) {
     assert!(mean < 0.006, "{what}: mean pixel error {mean}");
     assert!((sg - sw).abs() < 5e-3 * sw, "{what}: total {sg} vs {sw}");
     // The blur is really there: some pixels are partly covered in the middle of the sweep.
-    assert!(want.iter().filter(|&&w| w > 0.1 && w < 0.9).count() > 10, "{what}");
+    assert!(
+        want.iter().filter(|&&w| w > 0.1 && w < 0.9).count() > 10,
+        "{what}"
+    );
 }
 
 const SQUARE: [[f64; 2]; 4] = [[6.0, 5.5], [14.25, 5.5], [14.25, 17.0], [6.0, 17.0]];
@@ -136,7 +149,12 @@ fn motion_times_outside_a_partial_shutter_shape_the_interpolation() {
     );
     let r = render_one(&ortho("Shutter 0.5 1.5", &world));
     let want = reference(
-        |t| SQUARE.iter().map(|q| [q[0] - 4.0 + d * t / 2.0, q[1]]).collect(),
+        |t| {
+            SQUARE
+                .iter()
+                .map(|q| [q[0] - 4.0 + d * t / 2.0, q[1]])
+                .collect()
+        },
         [0.5, 1.5],
     );
     assert_coverage(&r, &want, "partial shutter");
@@ -150,7 +168,10 @@ fn rotating_square_matches_piecewise_linear_corners() {
     let a = 50f64.to_radians();
     let rot = |q: [f64; 2]| {
         let (x, y) = (q[0] - c[0], q[1] - c[1]);
-        [c[0] + x * a.cos() - y * a.sin(), c[1] + x * a.sin() + y * a.cos()]
+        [
+            c[0] + x * a.cos() - y * a.sin(),
+            c[1] + x * a.sin() + y * a.cos(),
+        ]
     };
     let local: Vec<[f64; 2]> = SQUARE.iter().map(|q| [q[0] - c[0], q[1] - c[1]]).collect();
     let world = format!(
@@ -283,16 +304,25 @@ fn out_of_focus_disk_blurs_by_the_thin_lens_circle_of_confusion() {
     // the second moments of two uniform disks add (ρ²/2 + c²/2), plus 1/6 px² for measuring
     // at pixel centres (a uniform position inside a pixel has variance 1/12 per axis).
     let measured = (2.0 * (m2 - 1.0 / 6.0) - rho * rho).sqrt();
-    eprintln!("coc: predicted {coc:.3} px, measured {measured:.3} px; area {area:.2} vs {:.2}", std::f64::consts::PI * rho * rho);
+    eprintln!(
+        "coc: predicted {coc:.3} px, measured {measured:.3} px; area {area:.2} vs {:.2}",
+        std::f64::consts::PI * rho * rho
+    );
     assert!(coc > 8.0, "the test needs a visible blur, got {coc}");
     // 2 % on the radius (measured 0.2 %): the spot covers ~π·c² ≈ 760 pixels of 256 samples
     // each, so the second moment's sampling error is far smaller; the disk's own size enters
     // only through ρ²/2 (ρ ≈ 5 px against c ≈ 15.5 px). 3 % on the area (measured +1.4 %):
     // grid borders reach outward by a fraction of a pixel so neighbouring grids never crack
     // (`seam_reach` in the hider), which on a 5-pixel disk adds about a pixel of area.
-    assert!((measured - coc).abs() < 0.02 * coc, "coc {measured} vs {coc}");
+    assert!(
+        (measured - coc).abs() < 0.02 * coc,
+        "coc {measured} vs {coc}"
+    );
     let want_area = std::f64::consts::PI * rho * rho;
-    assert!((area - want_area).abs() < 0.03 * want_area, "area {area} vs {want_area}");
+    assert!(
+        (area - want_area).abs() < 0.03 * want_area,
+        "area {area} vs {want_area}"
+    );
 }
 
 #[test]

@@ -183,9 +183,11 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
             // A moving primitive keeps its keys unless the shutter is closed at (or before)
             // its first key, where it is exactly its first key.
             let later = match &fp.motion {
-                Some(m) if close > open || m.times.first().is_some_and(|&t| open > t) => {
-                    m.later.iter().map(|k| PrimRef::Borrowed(k.as_ref())).collect()
-                }
+                Some(m) if close > open || m.times.first().is_some_and(|&t| open > t) => m
+                    .later
+                    .iter()
+                    .map(|k| PrimRef::Borrowed(k.as_ref()))
+                    .collect(),
                 _ => Vec::new(),
             };
             refiner.refine(

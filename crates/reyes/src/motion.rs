@@ -163,7 +163,10 @@ pub(crate) fn sample_moving_grid(
             // Cut the shutter so each sub-interval moves the micropolygon about 2 pixels.
             let [open, close] = out.shutter.map(f64::from);
             let (w0, h0) = {
-                let v: Vec<DVec3> = quad.iter().filter_map(|&k| project(m.keys[0][k].as_dvec3())).collect();
+                let v: Vec<DVec3> = quad
+                    .iter()
+                    .filter_map(|&k| project(m.keys[0][k].as_dvec3()))
+                    .collect();
                 let f = |g: fn(&DVec3) -> f64| {
                     let xs = v.iter().map(g);
                     xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
@@ -262,7 +265,9 @@ fn hit(
     x: f64,
     y: f64,
 ) -> Option<([f64; 3], [usize; 3])> {
-    let area = |v: &[DVec3; 3]| (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
+    let area = |v: &[DVec3; 3]| {
+        (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x)
+    };
     let mut ar = area(&v);
     if ar == 0.0 || !ar.is_finite() {
         return None;

@@ -54,7 +54,10 @@ pub(crate) struct Refiner<'c> {
 
 /// Splits a piece and its motion keys alike (the first key chooses the cut); keys that split
 /// into a different number of children are dropped (the piece stops moving).
-fn split_keys<'a>(prim: &PrimRef<'a>, later: &[PrimRef<'a>]) -> Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)> {
+fn split_keys<'a>(
+    prim: &PrimRef<'a>,
+    later: &[PrimRef<'a>],
+) -> Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)> {
     let choice = prim.get().split_choice();
     let children = prim.get().split_as(choice);
     let mut keys: Vec<Vec<Box<dyn Primitive>>> =
@@ -160,29 +163,13 @@ impl Refiner<'_> {
                 return;
             }
             for (child, keys) in split_keys(&prim, &later) {
-                self.refine(
-                    child,
-                    keys,
-                    attrs,
-                    eye_splits + 1,
-                    depth + 1,
-                    out,
-                    counts,
-                );
+                self.refine(child, keys, attrs, eye_splits + 1, depth + 1, out, counts);
             }
             return;
         }
         if !prim.get().diceable() {
             for (child, keys) in split_keys(&prim, &later) {
-                self.refine(
-                    child,
-                    keys,
-                    attrs,
-                    eye_splits,
-                    depth + 1,
-                    out,
-                    counts,
-                );
+                self.refine(child, keys, attrs, eye_splits, depth + 1, out, counts);
             }
             return;
         }
@@ -224,15 +211,7 @@ impl Refiner<'_> {
         let (nu, nv) = self.dice_rates(prim.get(), attrs);
         if (nu - 1) * (nv - 1) > self.grid_size && depth + 1 < MAX_SPLIT_DEPTH {
             for (child, keys) in split_keys(&prim, &later) {
-                self.refine(
-                    child,
-                    keys,
-                    attrs,
-                    eye_splits,
-                    depth + 1,
-                    out,
-                    counts,
-                );
+                self.refine(child, keys, attrs, eye_splits, depth + 1, out, counts);
             }
             return;
         }

@@ -76,7 +76,11 @@ pub fn sample_time_lens(
     for s in 0..n {
         let (jt, ju, jv) = if jitter {
             let h = hash(pixel ^ hash(s as u32 ^ 0x3243_f6a8));
-            (unit(hash(h)), unit(hash(h ^ 0x9e37_79b9)), unit(hash(h ^ 0x68e3_1da4)))
+            (
+                unit(hash(h)),
+                unit(hash(h ^ 0x9e37_79b9)),
+                unit(hash(h ^ 0x68e3_1da4)),
+            )
         } else {
             (0.5, 0.5, 0.5)
         };

@@ -634,9 +634,7 @@ impl Ri {
                     );
                 }
             }
-            ClippingPlane { .. }
-            | Imager { .. }
-            | RelativeDetail(_) => {
+            ClippingPlane { .. } | Imager { .. } | RelativeDetail(_) => {
                 self.diagnostics
                     .warn(span, &name, "not supported yet (ignored)");
             }
@@ -1232,7 +1230,8 @@ impl Ri {
             };
             let prims = self.build_geometry(req, span, ctm).unwrap_or_default();
             let m = self.motion.as_mut().expect("checked above");
-            m.first.get_or_insert((span.clone(), req.name().to_string()));
+            m.first
+                .get_or_insert((span.clone(), req.name().to_string()));
             m.geometry.push(prims);
             return;
         }
@@ -1361,8 +1360,11 @@ impl Ri {
     /// The k-th transformation of a motion block: applied to the transform the block started
     /// from, kept for `MotionEnd`.
     fn motion_transform(&mut self, req: Request, span: &Span) {
-        let Some(m) = self.motion.as_mut() else { return };
-        m.first.get_or_insert((span.clone(), req.name().to_string()));
+        let Some(m) = self.motion.as_mut() else {
+            return;
+        };
+        m.first
+            .get_or_insert((span.clone(), req.name().to_string()));
         let (ctm, motion) = m.base.clone();
         self.ctm = ctm;
         self.ctm_motion = motion;

@@ -43,9 +43,11 @@ fn blocks_that_cancel_leave_the_primitive_still() {
 
 #[test]
 fn transforms_after_the_block_apply_to_every_key_and_camera_motion_reaches_the_world() {
-    let (f, e) = run("MotionBegin [0 1]\nTranslate 0 0 5\nTranslate 0 2 5\nMotionEnd\nWorldBegin\n\
+    let (f, e) = run(
+        "MotionBegin [0 1]\nTranslate 0 0 5\nTranslate 0 2 5\nMotionEnd\nWorldBegin\n\
          MotionBegin [0 0.5 1]\nTranslate 0 0 0\nTranslate 1 0 0\nTranslate 4 0 0\nMotionEnd\n\
-         Scale 2 2 2\nTranslate 1 0 0\nSphere 1 -1 1 360\nWorldEnd\n");
+         Scale 2 2 2\nTranslate 1 0 0\nSphere 1 -1 1 360\nWorldEnd\n",
+    );
     assert!(e.is_empty(), "{e:?}");
     let p = &f[0].primitives[0];
     let m = p.motion.as_ref().expect("moving");
@@ -58,10 +60,16 @@ fn transforms_after_the_block_apply_to_every_key_and_camera_motion_reaches_the_w
 
 #[test]
 fn a_block_with_the_wrong_count_is_an_error_with_its_span() {
-    let (f, e) = run("WorldBegin\nMotionBegin [0 0.5 1]\nTranslate 1 0 0\nTranslate 2 0 0\nMotionEnd\n\
-         Translate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n");
+    let (f, e) = run(
+        "WorldBegin\nMotionBegin [0 0.5 1]\nTranslate 1 0 0\nTranslate 2 0 0\nMotionEnd\n\
+         Translate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n",
+    );
     assert_eq!(e.len(), 1, "{e:?}");
-    assert!(e[0].starts_with("t.rib:3:1: error: Translate: MotionBegin gave 3 times"), "{}", e[0]);
+    assert!(
+        e[0].starts_with("t.rib:3:1: error: Translate: MotionBegin gave 3 times"),
+        "{}",
+        e[0]
+    );
     // The first transformation is used.
     let p = &f[0].primitives[0];
     assert!(p.motion.is_none());
@@ -80,8 +88,10 @@ fn deformation_keys_of_another_topology_are_an_error() {
 
 #[test]
 fn shutter_and_depth_of_field_options() {
-    let (f, e) = run("Shutter 0.25 0.75\nDepthOfField 2.8 0.5 4\nWorldBegin\nWorldEnd\n\
-         Shutter 1 0\nDepthOfField\nWorldBegin\nWorldEnd\n");
+    let (f, e) = run(
+        "Shutter 0.25 0.75\nDepthOfField 2.8 0.5 4\nWorldBegin\nWorldEnd\n\
+         Shutter 1 0\nDepthOfField\nWorldBegin\nWorldEnd\n",
+    );
     assert_eq!(e.len(), 1, "{e:?}");
     assert!(e[0].contains("Shutter"), "{}", e[0]);
     assert_eq!(f[0].options.shutter, [0.25, 0.75]);
