@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the README gallery: renders every scene in rib/ch9/, rib/geometry.rib, rib/blobby.rib,
-# rib/csg.rib, rib/displacement.rib,
+# rib/csg.rib, rib/displacement.rib, rib/motion.rib,
 # rib/bmrt/arealight.rib and the single-RIB form of every pipeline in rib/pipelines/ with a
 # release build of `render`, and converts the images they write to small 8-bit PNGs in
 # docs/gallery/ (with the `to_png` example of illume-imageio, so no outside image tool is
@@ -73,9 +73,10 @@ for rib in "$root"/rib/ch9/*.rib; do
   done
 done
 
-# Other example scenes: the issue-10 geometry, Blobby, CSG, displacement and the BMRT area light.
+# Other example scenes: the issue-10 geometry, Blobby, CSG, displacement, the BMRT area light,
+# motion blur and depth of field.
 for rib in "$root"/rib/geometry.rib "$root"/rib/blobby.rib "$root"/rib/csg.rib \
-  "$root"/rib/displacement.rib "$root"/rib/bmrt/arealight.rib; do
+  "$root"/rib/displacement.rib "$root"/rib/bmrt/arealight.rib "$root"/rib/motion.rib; do
   name="$(basename "$rib" .rib)"
   dir="$work/$name"
   mkdir -p "$dir"

@@ -76,6 +76,21 @@ pub trait Primitive: Send + Sync + std::fmt::Debug {
     /// mesh → faces, polygon → pieces). Never returns an empty list for a non-empty surface.
     fn split(&self) -> Vec<Box<dyn Primitive>>;
 
+    /// Which way [`Primitive::split`] would cut this primitive, as an opaque tag. The motion
+    /// keys of a deforming primitive must all be cut the same way (the hider interpolates their
+    /// diced vertices one to one), so the hider asks the first key and cuts every key with
+    /// [`Primitive::split_as`].
+    fn split_choice(&self) -> u8 {
+        0
+    }
+
+    /// [`Primitive::split`], cut the way `choice` (a [`Primitive::split_choice`] of a key of the
+    /// same topology) says. Primitives whose split depends on topology only keep the default.
+    fn split_as(&self, choice: u8) -> Vec<Box<dyn Primitive>> {
+        let _ = choice;
+        self.split()
+    }
+
     /// Dices into a grid of `nu × nv` **vertices** (`nu, nv ≥ 2`), u varying fastest.
     /// Adjacent grids of one primitive share their edge vertices exactly (same parameter
     /// values evaluated the same way), so no crack opens between them.

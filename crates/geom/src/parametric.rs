@@ -268,26 +268,33 @@ impl Primitive for Parametric {
     /// the other way; one that can shrink in neither returns itself (the hider's split limit
     /// ends the recursion).
     fn split(&self) -> Vec<Box<dyn Primitive>> {
+        self.split_as(self.split_choice())
+    }
+
+    /// 0: halve u, 1: halve v, 2: neither can be halved.
+    fn split_choice(&self) -> u8 {
         let (lu, lv) = self.extents();
-        let split_u = |(a, b): ([f64; 2], [f64; 2])| -> Vec<Box<dyn Primitive>> {
-            vec![
-                Box::new(self.sub_range(a, self.v)),
-                Box::new(self.sub_range(b, self.v)),
-            ]
-        };
-        let split_v = |(a, b): ([f64; 2], [f64; 2])| -> Vec<Box<dyn Primitive>> {
-            vec![
-                Box::new(self.sub_range(self.u, a)),
-                Box::new(self.sub_range(self.u, b)),
-            ]
-        };
         // NaN extents (a degenerate surface) fall back to splitting u.
         let prefer_u = lv.partial_cmp(&lu) != Some(std::cmp::Ordering::Greater);
         match (halve(self.u), halve(self.v)) {
-            (Some(hu), _) if prefer_u => split_u(hu),
-            (_, Some(hv)) => split_v(hv),
-            (Some(hu), None) => split_u(hu),
-            (None, None) => vec![Box::new(self.clone())],
+            (Some(_), _) if prefer_u => 0,
+            (_, Some(_)) => 1,
+            (Some(_), None) => 0,
+            (None, None) => 2,
+        }
+    }
+
+    fn split_as(&self, choice: u8) -> Vec<Box<dyn Primitive>> {
+        match (choice, halve(self.u), halve(self.v)) {
+            (0, Some((a, b)), _) => vec![
+                Box::new(self.sub_range(a, self.v)),
+                Box::new(self.sub_range(b, self.v)),
+            ],
+            (1, _, Some((a, b))) => vec![
+                Box::new(self.sub_range(self.u, a)),
+                Box::new(self.sub_range(self.u, b)),
+            ],
+            _ => vec![Box::new(self.clone())],
         }
     }
 

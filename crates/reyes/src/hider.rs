@@ -3,8 +3,10 @@
 //! lists; lists composited front to back; pixel filter; exposure.
 use crate::csg::{SolidResolver, NO_SOLID};
 use crate::filter::PixelFilter;
+use crate::lens::Lens;
+use crate::motion::{sample_moving_grid, GridMotion, SampleTarget};
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
-use crate::sampling::sample_position;
+use crate::sampling::{sample_position, sample_time_lens};
 use crate::shading::FrameShading;
 use crate::{RenderSettings, Rendered, Stats};
 use glam::Vec3;
@@ -15,25 +17,28 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 /// A diced, shaded grid in raster space.
-struct ShadedGrid {
-    nu: usize,
-    nv: usize,
+pub(crate) struct ShadedGrid {
+    pub(crate) nu: usize,
+    pub(crate) nv: usize,
     /// Raster x, y and camera z per vertex.
     pos: Vec<Vec3>,
     ci: Vec<Vec3>,
     oi: Vec<Vec3>,
     /// Per micropolygon: culled as a back face (Sides 1).
-    backface: Vec<bool>,
+    pub(crate) backface: Vec<bool>,
     /// The primitive solid this grid bounds ([`NO_SOLID`] for none).
-    solid: u32,
+    pub(crate) solid: u32,
     /// Whether a micropolygon triangle wound counter-clockwise in raster space faces the eye
     /// (faces along the outward normal: an entering hit), given the grid's orientation.
-    ccw_enters: bool,
+    pub(crate) ccw_enters: bool,
     /// Outward reach (raster pixels) of each border segment, for the rows `j = 0`,
     /// `j = nv−1` and the columns `i = 0`, `i = nu−1`: see [`seam_reach`].
-    seam: [Vec<f64>; 4],
+    pub(crate) seam: [Vec<f64>; 4],
     matte: bool,
     smooth: bool,
+    /// Camera-space positions per motion key when the grid moves or depth of field is on
+    /// (sampled by [`crate::motion`] instead of [`sample_triangle`]).
+    motion: Option<GridMotion>,
     /// Set when displacement moved the grid farther than its `displacementbound`.
     overflow: Option<Overflow>,
 }
@@ -150,7 +155,7 @@ impl GridSlot {
 }
 
 #[derive(Clone, Copy)]
-struct VisiblePoint {
+pub(crate) struct VisiblePoint {
     z: f32,
     order: u64,
     c: Vec3,
@@ -193,12 +198,24 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
         cy0 as f32 - margin,
         cy1 as f32 + margin,
     ];
+    let mut warnings = Vec::new();
+    let lens = Lens::new(opts.depth_of_field, cam);
+    if opts.depth_of_field.is_some() && !cam.is_perspective() {
+        warnings.push(Diagnostic {
+            severity: Severity::Warning,
+            span: illume_rib::Span::synthetic(),
+            request: Some("DepthOfField".to_string()),
+            message: "depth of field needs a perspective camera (ignored)".to_string(),
+        });
+    }
+    let [open, close] = opts.shutter;
     let t0 = Instant::now();
     let refiner = Refiner {
         camera: cam,
         region,
         eye_splits: opts.eye_splits,
         grid_size: opts.grid_size.max(1) as usize,
+        lens,
     };
     let per_prim: Vec<(Vec<Piece>, RefineCounts)> = frame
         .primitives
@@ -206,8 +223,19 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
         .map(|fp| {
             let mut out = Vec::new();
             let mut counts = RefineCounts::default();
+            // A moving primitive keeps its keys unless the shutter is closed at (or before)
+            // its first key, where it is exactly its first key.
+            let later = match &fp.motion {
+                Some(m) if close > open || m.times.first().is_some_and(|&t| open > t) => m
+                    .later
+                    .iter()
+                    .map(|k| PrimRef::Borrowed(k.as_ref()))
+                    .collect(),
+                _ => Vec::new(),
+            };
             refiner.refine(
                 PrimRef::Borrowed(fp.primitive.as_ref()),
+                later,
                 &fp.attributes,
                 0,
                 0,
@@ -217,7 +245,6 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
             (out, counts)
         })
         .collect();
-    let mut warnings = Vec::new();
     let mut pieces: Vec<Piece> = Vec::new();
     let mut culled = 0;
     for (index, ((ps, counts), fp)) in per_prim.into_iter().zip(&frame.primitives).enumerate() {
@@ -256,6 +283,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let total = AtomicUsize::new(nbx * nby);
     let frame_no = frame.number.unwrap_or(0);
     let spp = opts.pixel_samples;
+    let blurred = lens.is_some() || pieces.iter().any(|p| !p.later.is_empty());
 
     let (shading, shader_warnings) = FrameShading::new(frame, settings.textures);
     warnings.extend(shader_warnings);
@@ -296,6 +324,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
                     &filter,
                     spp,
                     frame_no,
+                    blurred.then_some(lens.as_ref()),
                     &counters,
                 );
                 let n = done.fetch_add(1, Relaxed) + 1;
@@ -532,6 +561,7 @@ fn dice_and_shade(
         })
         .collect();
     let (nu, nv) = (grid.nu, grid.nv);
+    let motion = grid_motion(frame, piece, &grid, &shaded.p);
     // Trimmed-away micropolygons are skipped exactly like back faces.
     let mut backface = if grid.hidden.len() == (nu - 1) * (nv - 1) {
         grid.hidden.clone()
@@ -592,6 +622,7 @@ fn dice_and_shade(
         matte: a.matte,
         smooth: a.smooth_shading,
         overflow,
+        motion,
     }))
 }
 
@@ -642,6 +673,95 @@ fn measure_overflow(
     })
 }
 
+/// The camera-space positions of every motion key of a piece, diced at the first key's
+/// `nu × nv` and displaced by the first key's displacement (shading runs once, at the first
+/// key); one key when only depth of field is on; `None` for a still grid without a lens.
+fn grid_motion(
+    frame: &Frame,
+    piece: &Piece,
+    grid: &illume_geom::Grid,
+    displaced: &[Vec3],
+) -> Option<GridMotion> {
+    let lens = Lens::new(frame.options.depth_of_field, &frame.camera).is_some();
+    let times = frame.primitives[piece.prim_index]
+        .motion
+        .as_ref()
+        .map(|m| m.times.iter().map(|&t| f64::from(t)).collect::<Vec<_>>());
+    match times {
+        Some(times) if !piece.later.is_empty() && times.len() == piece.later.len() + 1 => {
+            let mut keys = vec![displaced.to_vec()];
+            for k in &piece.later {
+                let g = k.get().dice(grid.nu, grid.nv);
+                if g.p.len() != grid.p.len() {
+                    return None;
+                }
+                keys.push(
+                    g.p.iter()
+                        .zip(displaced.iter().zip(&grid.p))
+                        .map(|(p, (d, p0))| *p + (*d - *p0))
+                        .collect(),
+                );
+            }
+            Some(GridMotion { times, keys })
+        }
+        _ if lens => Some(GridMotion {
+            times: vec![0.0],
+            keys: vec![displaced.to_vec()],
+        }),
+        _ => None,
+    }
+}
+
+/// Records one sample hit of a moving micropolygon: colour and opacity interpolated at the
+/// barycentric weights `w` of grid vertices `idx` (or the micropolygon's first vertex when
+/// shading is flat); `ccw`: the triangle's raster winding at the sample (CSG entering test).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn deposit(
+    g: &ShadedGrid,
+    idx: [usize; 3],
+    w: [f64; 3],
+    first: usize,
+    z: f32,
+    order: u64,
+    ccw: bool,
+    s: usize,
+    lists: &mut [Vec<VisiblePoint>],
+    opaque_z: &mut [f32],
+) {
+    let (c, o) = if g.smooth {
+        let [a, b, cc] = w.map(|x| x as f32);
+        (
+            g.ci[idx[0]] * a + g.ci[idx[1]] * b + g.ci[idx[2]] * cc,
+            g.oi[idx[0]] * a + g.oi[idx[1]] * b + g.oi[idx[2]] * cc,
+        )
+    } else {
+        (g.ci[first], g.oi[first])
+    };
+    lists[s].push(VisiblePoint {
+        z,
+        order,
+        c,
+        o,
+        matte: g.matte,
+        entering: ccw == g.ccw_enters,
+    });
+    // A solid's surface may yet be carved away, so it hides nothing behind it.
+    if o.min_element() >= 1.0 && g.solid == NO_SOLID {
+        opaque_z[s] = z;
+    }
+}
+
+/// Edge test with a top-left tie rule so a sample on a shared edge counts once; a grid border
+/// edge instead accepts samples up to `r` pixels outside it.
+#[inline]
+pub(crate) fn edge(a: glam::DVec3, b: glam::DVec3, r: f64, x: f64, y: f64) -> bool {
+    let e = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
+    if r > 0.0 {
+        return e > -r * (b.x - a.x).hypot(b.y - a.y);
+    }
+    e > 0.0 || (e == 0.0 && (b.y < a.y || (b.y == a.y && b.x > a.x)))
+}
+
 #[allow(clippy::too_many_arguments)]
 fn render_bucket(
     frame: &Frame,
@@ -653,6 +773,7 @@ fn render_bucket(
     filter: &PixelFilter,
     spp: [u32; 2],
     frame_no: i32,
+    blur: Option<Option<&Lens>>,
     counters: &Counters,
 ) -> (Vec<[f32; 4]>, Vec<f32>) {
     let opts = &frame.options;
@@ -674,6 +795,24 @@ fn render_bucket(
             }
         }
     }
+    // Times and lens positions, only when something in the frame moves or a lens blurs.
+    let mut time_lens = Vec::new();
+    if blur.is_some() {
+        time_lens.reserve(pos.len());
+        for py in sy0..sy1 {
+            for px in sx0..sx1 {
+                sample_time_lens(
+                    px,
+                    py,
+                    spp,
+                    frame_no,
+                    opts.jitter,
+                    opts.shutter,
+                    &mut time_lens,
+                );
+            }
+        }
+    }
     let mut lists: Vec<Vec<VisiblePoint>> = vec![Vec::new(); pos.len()];
     let mut opaque_z = vec![f32::INFINITY; pos.len()];
     let (near, far) = (frame.camera.near as f32, frame.camera.far as f32);
@@ -691,6 +830,22 @@ fn render_bucket(
         let grid = grids[id].get(|| dice_and_shade(frame, shading, piece, counters));
         shade_elapsed += ns(t);
         let Some(g) = grid.as_deref() else { continue };
+        if let (Some(m), Some(lens)) = (&g.motion, blur) {
+            let mut target = SampleTarget {
+                pos: &pos,
+                time_lens: &time_lens,
+                lists: &mut lists,
+                opaque_z: &mut opaque_z,
+                origin: [sx0, sy0],
+                size: [sw, sh],
+                n_per,
+                near_far: [near, far],
+                shutter: opts.shutter,
+            };
+            let hits = sample_moving_grid(g, m, id, &frame.camera, lens, &mut target);
+            counters.samples.fetch_add(hits, Relaxed);
+            continue;
+        }
         for j in 0..g.nv - 1 {
             for i in 0..g.nu - 1 {
                 let m = j * (g.nu - 1) + i;
@@ -890,15 +1045,6 @@ fn sample_triangle(
     }
     let _ = spp;
     let vd = v.map(|p| p.as_dvec3());
-    // Edge functions with a top-left tie rule so a sample on a shared edge counts once; a grid
-    // border edge instead accepts samples up to `reach` pixels outside it.
-    let edge = |a: glam::DVec3, b: glam::DVec3, r: f64, x: f64, y: f64| -> bool {
-        let e = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
-        if r > 0.0 {
-            return e > -r * (b.x - a.x).hypot(b.y - a.y);
-        }
-        e > 0.0 || (e == 0.0 && (b.y < a.y || (b.y == a.y && b.x > a.x)))
-    };
     let inv_z = vd.map(|p| 1.0 / p.z);
     for qy in qy0..=qy1 {
         for qx in qx0..=qx1 {

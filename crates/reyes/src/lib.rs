@@ -9,6 +9,8 @@ pub mod display;
 pub mod filter;
 mod frame_loop;
 mod hider;
+mod lens;
+mod motion;
 mod rayscene;
 mod refine;
 pub mod sampling;

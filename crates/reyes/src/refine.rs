@@ -27,11 +27,15 @@ impl PrimRef<'_> {
 
 pub(crate) struct Piece<'a> {
     pub prim: PrimRef<'a>,
+    /// The later motion keys of the same piece (empty when it does not move); every key was
+    /// split exactly like `prim` so they dice to matching grids.
+    pub later: Vec<PrimRef<'a>>,
     pub attrs: Arc<Attributes>,
     /// Dice rates in vertices.
     pub nu: usize,
     pub nv: usize,
-    /// Raster bound x0 x1 y0 y1 and nearest camera depth.
+    /// Raster bound x0 x1 y0 y1 and nearest camera depth, over every motion key and grown by
+    /// the circle of confusion.
     pub raster: [f32; 4],
     pub zmin: f32,
     /// Index of the frame primitive this piece came from.
@@ -44,6 +48,34 @@ pub(crate) struct Refiner<'c> {
     pub region: [f32; 4],
     pub eye_splits: u32,
     pub grid_size: usize,
+    /// The thin lens when depth of field is on.
+    pub lens: Option<crate::lens::Lens>,
+}
+
+/// Splits a piece and its motion keys alike (the first key chooses the cut); keys that split
+/// into a different number of children are dropped (the piece stops moving).
+fn split_keys<'a>(
+    prim: &PrimRef<'a>,
+    later: &[PrimRef<'a>],
+) -> Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)> {
+    let choice = prim.get().split_choice();
+    let children = prim.get().split_as(choice);
+    let mut keys: Vec<Vec<Box<dyn Primitive>>> =
+        later.iter().map(|k| k.get().split_as(choice)).collect();
+    if keys.iter().any(|k| k.len() != children.len()) {
+        keys.clear();
+    }
+    let mut keys: Vec<_> = keys.into_iter().map(Vec::into_iter).collect();
+    children
+        .into_iter()
+        .map(|c| {
+            let ks = keys
+                .iter_mut()
+                .filter_map(|k| k.next().map(PrimRef::Owned))
+                .collect();
+            (PrimRef::Owned(c), ks)
+        })
+        .collect()
 }
 
 #[derive(Default)]
@@ -66,6 +98,10 @@ impl Refiner<'_> {
         let c = self.camera;
         if f64::from(b.max.z) < c.near || f64::from(b.min.z) > c.far {
             return true;
+        }
+        if self.lens.is_some() {
+            // Blur moves points sideways on screen; the padded raster test below culls.
+            return false;
         }
         let [l, r, bot, t] = c.screen_window;
         let (w, h) = (f64::from(c.xres), f64::from(c.yres));
@@ -94,16 +130,24 @@ impl Refiner<'_> {
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     pub fn refine<'a>(
         &self,
         prim: PrimRef<'a>,
+        later: Vec<PrimRef<'a>>,
         attrs: &Arc<Attributes>,
         eye_splits: u32,
         depth: u32,
         out: &mut Vec<Piece<'a>>,
         counts: &mut RefineCounts,
     ) {
-        let b = prim.get().bound().padded(attrs.displacement_bound);
+        // Vertices move linearly between keys, so the box around every key's bound holds the
+        // piece over the whole shutter interval.
+        let mut b = prim.get().bound();
+        for k in &later {
+            b = b.union(k.get().bound());
+        }
+        let b = b.padded(attrs.displacement_bound);
         if b.is_empty() || self.outside_frustum(&b) {
             counts.culled += 1;
             return;
@@ -118,28 +162,14 @@ impl Refiner<'_> {
                 counts.eye_dropped += 1;
                 return;
             }
-            for child in prim.get().split() {
-                self.refine(
-                    PrimRef::Owned(child),
-                    attrs,
-                    eye_splits + 1,
-                    depth + 1,
-                    out,
-                    counts,
-                );
+            for (child, keys) in split_keys(&prim, &later) {
+                self.refine(child, keys, attrs, eye_splits + 1, depth + 1, out, counts);
             }
             return;
         }
         if !prim.get().diceable() {
-            for child in prim.get().split() {
-                self.refine(
-                    PrimRef::Owned(child),
-                    attrs,
-                    eye_splits,
-                    depth + 1,
-                    out,
-                    counts,
-                );
+            for (child, keys) in split_keys(&prim, &later) {
+                self.refine(child, keys, attrs, eye_splits, depth + 1, out, counts);
             }
             return;
         }
@@ -154,20 +184,14 @@ impl Refiner<'_> {
         }
         let (nu, nv) = self.dice_rates(prim.get(), attrs);
         if (nu - 1) * (nv - 1) > self.grid_size && depth + 1 < MAX_SPLIT_DEPTH {
-            for child in prim.get().split() {
-                self.refine(
-                    PrimRef::Owned(child),
-                    attrs,
-                    eye_splits,
-                    depth + 1,
-                    out,
-                    counts,
-                );
+            for (child, keys) in split_keys(&prim, &later) {
+                self.refine(child, keys, attrs, eye_splits, depth + 1, out, counts);
             }
             return;
         }
         out.push(Piece {
             prim,
+            later,
             attrs: attrs.clone(),
             nu,
             nv,
@@ -192,6 +216,19 @@ impl Refiner<'_> {
                 raster[1].max(q.x as f32),
                 raster[2].min(q.y as f32),
                 raster[3].max(q.y as f32),
+            ];
+        }
+        // Depth of field blurs every point by up to its circle of confusion.
+        if let Some(lens) = &self.lens {
+            let (gx, gy) = lens.blur_radius(
+                f64::from(b.min.z).max(self.eye_z()),
+                f64::from(b.max.z).max(self.eye_z()),
+            );
+            raster = [
+                raster[0] - gx as f32,
+                raster[1] + gx as f32,
+                raster[2] - gy as f32,
+                raster[3] + gy as f32,
             ];
         }
         raster

@@ -17,6 +17,8 @@ pub struct FramePrimitive {
     /// The primitive solid (a leaf of [`Frame::solids`]) whose boundary this surface is part
     /// of, `None` outside `SolidBegin`/`SolidEnd`.
     pub solid: Option<u32>,
+    /// Its later positions when it moves (a motion block, a moving transform or camera).
+    pub motion: Option<crate::motion::MotionKeys>,
 }
 
 /// A complete frame: camera, options, lights, and every primitive of the world block.

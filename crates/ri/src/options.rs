@@ -78,6 +78,10 @@ pub struct Options {
     pub shadow_bias: [f32; 2],
     /// `Option "shading" "string specularmodel"` (DESIGN.md: "prman" switches the exponent).
     pub specular_model: String,
+    /// `Shutter` open, close (default 0 0: no motion blur).
+    pub shutter: [f32; 2],
+    /// `DepthOfField` fstop, focallength, focaldistance; `None` is a pinhole camera.
+    pub depth_of_field: Option<[f32; 3]>,
 }
 
 impl Default for Options {
@@ -121,6 +125,8 @@ impl Default for Options {
             procedural_path: vec![".".into()],
             shadow_bias: [0.225, 0.225],
             specular_model: "rispec".into(),
+            shutter: [0.0, 0.0],
+            depth_of_field: None,
         }
     }
 }

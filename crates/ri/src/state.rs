@@ -5,6 +5,7 @@ use crate::camera::Camera;
 use crate::declarations::Declarations;
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::frame::{Frame, FramePrimitive};
+use crate::motion::{segment, MotionKeys, MovingTransform};
 use crate::options::{expand_search_path, DepthFilter, DisplaySpec, Options, QuantizeSpec};
 use crate::paramlist;
 use crate::solid::{SolidOp, SolidTree};
@@ -60,7 +61,19 @@ struct Block {
     span: Span,
     attributes: Arc<Attributes>,
     ctm: DMat4,
+    ctm_motion: Option<MovingTransform>,
     options: Option<Options>,
+}
+
+/// An open `MotionBegin` block: its times, the transform it started from, and what each of
+/// its requests produced (one transformation or one primitive list per time).
+struct OpenMotion {
+    times: Vec<f64>,
+    base: (DMat4, Option<MovingTransform>),
+    transforms: Vec<(DMat4, Option<MovingTransform>)>,
+    geometry: Vec<Vec<Box<dyn illume_geom::Primitive>>>,
+    /// Span and name of the first request, for the block's errors.
+    first: Option<(Span, String)>,
 }
 
 enum Recording {
@@ -74,7 +87,12 @@ pub struct Ri {
     attributes: Arc<Attributes>,
     /// Camera from the current (object) space, f64.
     ctm: DMat4,
+    /// The current transformation's keys when it moves (`ctm` is the first key).
+    ctm_motion: Option<MovingTransform>,
     camera_from_world: Option<DMat4>,
+    /// The camera's keys when it moves (a motion block before `WorldBegin`).
+    camera_motion: Option<MovingTransform>,
+    motion: Option<OpenMotion>,
     blocks: Vec<Block>,
     declarations: Declarations,
     coordinate_systems: HashMap<String, DMat4>,
@@ -111,7 +129,10 @@ impl Ri {
             options: Options::default(),
             attributes: Arc::new(Attributes::default()),
             ctm: DMat4::IDENTITY,
+            ctm_motion: None,
             camera_from_world: None,
+            camera_motion: None,
+            motion: None,
             blocks: Vec::new(),
             declarations: Declarations::default(),
             coordinate_systems: HashMap::new(),
@@ -238,6 +259,10 @@ impl Ri {
             );
             return;
         }
+        if self.motion.is_some() && is_transform(&value) {
+            self.motion_transform(value, &span);
+            return;
+        }
         use Request::*;
         match value {
             StructureComment(_) | Version(_) | ErrorHandler(_) | Unknown { .. } => {}
@@ -259,14 +284,7 @@ impl Ri {
                 self.solid_begin(&op, &span);
                 self.push_block(BlockKind::Solid, &span);
             }
-            MotionBegin(_) => {
-                self.diagnostics.warn(
-                    &span,
-                    &name,
-                    "motion blur not supported yet: the first position is used",
-                );
-                self.push_block(BlockKind::Motion, &span);
-            }
+            MotionBegin(times) => self.motion_begin(times, &span),
             FrameEnd => self.end_block(BlockKind::Frame, &span, &name),
             WorldEnd => self.end_block(BlockKind::World, &span, &name),
             AttributeEnd => self.end_block(BlockKind::Attribute, &span, &name),
@@ -358,6 +376,7 @@ impl Ri {
             span: span.clone(),
             attributes: self.attributes.clone(),
             ctm: self.ctm,
+            ctm_motion: self.ctm_motion.clone(),
             options: (kind == BlockKind::Frame).then(|| self.options.clone()),
         });
     }
@@ -384,22 +403,22 @@ impl Ri {
     fn pop_block(&mut self) {
         let Some(b) = self.blocks.pop() else { return };
         match b.kind {
-            BlockKind::Transform => self.ctm = b.ctm,
+            BlockKind::Transform => (self.ctm, self.ctm_motion) = (b.ctm, b.ctm_motion),
             BlockKind::Solid => {
                 self.open_solids.pop();
             }
-            BlockKind::Motion => {}
+            BlockKind::Motion => self.motion_end(&b.span),
             BlockKind::Attribute => {
-                self.ctm = b.ctm;
+                (self.ctm, self.ctm_motion) = (b.ctm, b.ctm_motion);
                 self.attributes = b.attributes;
             }
             BlockKind::World => {
                 self.world_end();
-                self.ctm = b.ctm;
+                (self.ctm, self.ctm_motion) = (b.ctm, b.ctm_motion);
                 self.attributes = b.attributes;
             }
             BlockKind::Frame => {
-                self.ctm = b.ctm;
+                (self.ctm, self.ctm_motion) = (b.ctm, b.ctm_motion);
                 self.attributes = b.attributes;
                 if let Some(o) = b.options {
                     self.options = o;
@@ -422,6 +441,7 @@ impl Ri {
         }
         self.camera = Some(Camera::new(&options, self.ctm));
         self.camera_from_world = Some(self.ctm);
+        self.camera_motion = self.ctm_motion.clone();
         self.coordinate_systems
             .insert("world".to_string(), self.ctm);
         self.world_active = match (self.frame_range, self.frame_number) {
@@ -459,6 +479,7 @@ impl Ri {
         }
         self.lights.clear();
         self.camera_from_world = None;
+        self.camera_motion = None;
         self.coordinate_systems.remove("world");
         self.world_active = true;
     }
@@ -564,6 +585,7 @@ impl Ri {
                 }
                 // RiProjection leaves the current transformation at identity.
                 self.ctm = DMat4::IDENTITY;
+                self.ctm_motion = None;
             }
             Clipping { near, far } => {
                 if near > 0.0 && far > near {
@@ -577,11 +599,43 @@ impl Ri {
                     );
                 }
             }
-            ClippingPlane { .. }
-            | DepthOfField { .. }
-            | Shutter { .. }
-            | Imager { .. }
-            | RelativeDetail(_) => {
+            Shutter { open, close } => {
+                if open.is_finite() && close.is_finite() && open <= close {
+                    o.shutter = [open, close];
+                } else {
+                    self.diagnostics.error(
+                        span,
+                        &name,
+                        format!("expected open ≤ close, found {open} {close}"),
+                    );
+                }
+            }
+            DepthOfField {
+                fstop,
+                focal_length,
+                focal_distance,
+            } => {
+                // An infinite f-stop is the spec's way to ask for a pinhole camera.
+                if fstop == f32::INFINITY {
+                    o.depth_of_field = None;
+                } else if fstop > 0.0
+                    && focal_length > 0.0
+                    && focal_distance > 0.0
+                    && focal_length.is_finite()
+                    && focal_distance.is_finite()
+                {
+                    o.depth_of_field = Some([fstop, focal_length, focal_distance]);
+                } else {
+                    self.diagnostics.error(
+                        span,
+                        &name,
+                        format!(
+                            "expected positive fstop, focallength and focaldistance, found {fstop} {focal_length} {focal_distance}"
+                        ),
+                    );
+                }
+            }
+            ClippingPlane { .. } | Imager { .. } | RelativeDetail(_) => {
                 self.diagnostics
                     .warn(span, &name, "not supported yet (ignored)");
             }
@@ -812,6 +866,9 @@ impl Ri {
 
     fn concat(&mut self, m: DMat4) {
         self.ctm *= m;
+        if let Some(mm) = &self.ctm_motion {
+            self.ctm_motion = Some(mm.then(m));
+        }
     }
 
     /// The handedness of the current object space relative to (left-handed) camera space.
@@ -1008,10 +1065,12 @@ impl Ri {
             }
             Identity => {
                 self.ctm = self.camera_from_world.unwrap_or(DMat4::IDENTITY);
+                self.ctm_motion = self.camera_motion.clone();
             }
             Transform(m) => {
-                self.ctm =
-                    self.camera_from_world.unwrap_or(DMat4::IDENTITY) * transform::from_rib(&m);
+                let m = transform::from_rib(&m);
+                self.ctm = self.camera_from_world.unwrap_or(DMat4::IDENTITY) * m;
+                self.ctm_motion = self.camera_motion.as_ref().map(|c| c.then(m));
             }
             ConcatTransform(m) => self.concat(transform::from_rib(&m)),
             Perspective(fov) => match transform::perspective(fov) {
@@ -1036,7 +1095,7 @@ impl Ri {
                 self.coordinate_systems.insert(n, self.ctm);
             }
             CoordSysTransform(n) => match self.named_space(&n) {
-                Some(m) => self.ctm = m,
+                Some(m) => (self.ctm, self.ctm_motion) = (m, None),
                 None => self.diagnostics.error(
                     span,
                     &name,
@@ -1225,12 +1284,51 @@ impl Ri {
         if !self.world_active || !self.detail_visible() {
             return;
         }
+        if let Some(m) = &self.motion {
+            // One key of a deforming primitive, built under the transform at its time.
+            let ctm = match (m.times.get(m.geometry.len()), &self.ctm_motion) {
+                (Some(&t), Some(mm)) => mm.at(t),
+                _ => self.ctm,
+            };
+            let prims = self.build_geometry(req, span, ctm).unwrap_or_default();
+            let m = self.motion.as_mut().expect("checked above");
+            m.first
+                .get_or_insert((span.clone(), req.name().to_string()));
+            m.geometry.push(prims);
+            return;
+        }
+        match self.ctm_motion.clone() {
+            None => {
+                let prims = self.build_geometry(req, span, self.ctm).unwrap_or_default();
+                self.push_primitives(vec![0.0], vec![prims], span, req.name());
+            }
+            Some(mm) => {
+                // A moving transform (or camera): the primitive is built at every key.
+                let mut keys = Vec::new();
+                for m in &mm.mats {
+                    match self.build_geometry(req, span, *m) {
+                        Some(p) => keys.push(p),
+                        None => return,
+                    }
+                }
+                self.push_primitives(mm.times.clone(), keys, span, req.name());
+            }
+        }
+    }
+
+    /// Builds a geometry request under `camera_from_object`; `None` (reported) when it fails.
+    fn build_geometry(
+        &mut self,
+        req: &Request,
+        span: &Span,
+        camera_from_object: DMat4,
+    ) -> Option<Vec<Box<dyn illume_geom::Primitive>>> {
         let decls = &self.declarations;
         let lookup = |n: &str| decls.get(n);
         let a = &self.attributes;
         let mut blobby_warnings = Vec::new();
         let ctx = BuildContext {
-            camera_from_object: self.ctm,
+            camera_from_object,
             declarations: &lookup,
             basis: a.basis,
             texture_coordinates: a.texture_coordinates,
@@ -1253,7 +1351,7 @@ impl Ri {
                 let rate = f64::from(a.shading_rate);
                 let cells_for = |b: [f32; 6]| {
                     let extent = self
-                        .raster_bound(&b, self.ctm)
+                        .raster_bound(&b, camera_from_object)
                         .map(|r| (r[1] - r[0]).max(r[3] - r[2]));
                     illume_geom::blobby::cells_for_raster_size(extent, rate)
                 };
@@ -1270,25 +1368,164 @@ impl Ri {
             self.diagnostics.warn(span, req.name(), w);
         }
         match built {
-            Ok(prims) => {
-                let solid = self.solid_leaf();
-                for p in prims {
-                    self.primitives.push(FramePrimitive {
-                        primitive: p,
-                        attributes: self.attributes.clone(),
-                        span: span.clone(),
-                        solid,
-                    });
-                }
+            Ok(prims) => Some(prims),
+            Err(GeomError::Unsupported(what)) => {
+                self.diagnostics.warn(
+                    span,
+                    req.name(),
+                    format!("{what} not supported yet (skipped)"),
+                );
+                None
             }
-            Err(GeomError::Unsupported(what)) => self.diagnostics.warn(
-                span,
-                req.name(),
-                format!("{what} not supported yet (skipped)"),
-            ),
             Err(GeomError::Invalid { message, .. }) => {
-                self.diagnostics.error(span, req.name(), message)
+                self.diagnostics.error(span, req.name(), message);
+                None
             }
+        }
+    }
+
+    /// Adds the primitives of one request: `keys[k]` is what it built at `times[k]`. Keys of
+    /// different topology (another primitive count) can not be interpolated: an error, and the
+    /// first key is used.
+    fn push_primitives(
+        &mut self,
+        times: Vec<f64>,
+        keys: Vec<Vec<Box<dyn illume_geom::Primitive>>>,
+        span: &Span,
+        name: &str,
+    ) {
+        let mut keys = keys.into_iter();
+        let Some(first) = keys.next() else { return };
+        let mut later: Vec<Vec<Box<dyn illume_geom::Primitive>>> = keys.collect();
+        if later.iter().any(|k| k.len() != first.len()) {
+            self.diagnostics.error(
+                span,
+                name,
+                "the motion keys differ in topology (not interpolated: the first key is used)",
+            );
+            later.clear();
+        }
+        let mut later: Vec<_> = later.into_iter().map(Vec::into_iter).collect();
+        let solid = self.solid_leaf();
+        for p in first {
+            let motion = (!later.is_empty()).then(|| MotionKeys {
+                times: times.iter().map(|&t| t as f32).collect(),
+                later: later
+                    .iter_mut()
+                    .map(|k| k.next().expect("same length checked"))
+                    .collect(),
+            });
+            self.primitives.push(FramePrimitive {
+                primitive: p,
+                attributes: self.attributes.clone(),
+                span: span.clone(),
+                solid,
+                motion,
+            });
+        }
+    }
+
+    // ---- motion blocks ---------------------------------------------------------------------
+
+    fn motion_begin(&mut self, times: Vec<f32>, span: &Span) {
+        self.push_block(BlockKind::Motion, span);
+        if self.motion.is_some() {
+            self.diagnostics.error(
+                span,
+                "MotionBegin",
+                "motion blocks can not nest (its requests apply as if outside it)",
+            );
+            return;
+        }
+        let sorted = times.windows(2).all(|w| w[0] <= w[1]);
+        if times.is_empty() || !sorted || times.iter().any(|t| !t.is_finite()) {
+            self.diagnostics.error(
+                span,
+                "MotionBegin",
+                "expected one or more increasing times (its requests apply as if outside it)",
+            );
+            return;
+        }
+        self.motion = Some(OpenMotion {
+            times: times.iter().map(|&t| f64::from(t)).collect(),
+            base: (self.ctm, self.ctm_motion.clone()),
+            transforms: Vec::new(),
+            geometry: Vec::new(),
+            first: None,
+        });
+    }
+
+    /// The k-th transformation of a motion block: applied to the transform the block started
+    /// from, kept for `MotionEnd`.
+    fn motion_transform(&mut self, req: Request, span: &Span) {
+        let Some(m) = self.motion.as_mut() else {
+            return;
+        };
+        m.first
+            .get_or_insert((span.clone(), req.name().to_string()));
+        let (ctm, motion) = m.base.clone();
+        self.ctm = ctm;
+        self.ctm_motion = motion;
+        self.attribute_or_transform(req, span);
+        let result = (self.ctm, self.ctm_motion.take());
+        let m = self.motion.as_mut().expect("checked above");
+        m.transforms.push(result);
+        (self.ctm, self.ctm_motion) = m.base.clone();
+    }
+
+    /// `MotionEnd`: the block's transformations become one moving transform, its primitives one
+    /// moving primitive each.
+    fn motion_end(&mut self, _span: &Span) {
+        let Some(m) = self.motion.take() else { return };
+        let n = m.times.len();
+        let Some((span, name)) = m.first else { return };
+        if !m.transforms.is_empty() && !m.geometry.is_empty() {
+            self.diagnostics.error(
+                &span,
+                &name,
+                "a motion block holds either transformations or primitives, not both (the first of each is used)",
+            );
+        }
+        let count = m.transforms.len().max(m.geometry.len());
+        if count != n && (m.geometry.is_empty() || m.transforms.is_empty()) {
+            self.diagnostics.error(
+                &span,
+                &name,
+                format!("MotionBegin gave {n} times but the block holds {count} requests (the first is used)"),
+            );
+        }
+        let mut transforms = m.transforms;
+        if transforms.len() == n && m.geometry.is_empty() {
+            let at = |k: usize, t: f64| {
+                let (c, mm): &(DMat4, Option<MovingTransform>) = &transforms[k];
+                mm.as_ref().map_or(*c, |mm| mm.at(t))
+            };
+            let mut times = m.times.clone();
+            for (_, mm) in &transforms {
+                times.extend(mm.iter().flat_map(|mm| mm.times.iter().copied()));
+            }
+            let moving = MovingTransform::sampled(times, |t| {
+                let (k, w) = segment(&m.times, t);
+                if n == 1 {
+                    at(0, t)
+                } else {
+                    at(k, t) * (1.0 - w) + at(k + 1, t) * w
+                }
+            });
+            self.ctm = moving.mats[0];
+            // Keys that all agree (motion blocks that cancel, as in Aqsis' transmb_test) are
+            // no motion: the primitives stay on the hider's fast path.
+            let moves = moving.mats.iter().any(|m| *m != moving.mats[0]);
+            self.ctm_motion = moves.then_some(moving);
+        } else if !transforms.is_empty() {
+            (self.ctm, self.ctm_motion) = transforms.swap_remove(0);
+        }
+        let mut geometry = m.geometry;
+        if geometry.len() == n && transforms.is_empty() {
+            self.push_primitives(m.times, geometry, &span, &name);
+        } else if !geometry.is_empty() {
+            let first = geometry.swap_remove(0);
+            self.push_primitives(vec![0.0], vec![first], &span, &name);
         }
     }
 
@@ -1592,6 +1829,23 @@ fn is_option(r: &Request) -> bool {
             | ColorSamples { .. }
             | RelativeDetail(_)
             | Option { .. }
+    )
+}
+
+/// The transformation requests a motion block may hold.
+fn is_transform(r: &Request) -> bool {
+    use Request::*;
+    matches!(
+        r,
+        Identity
+            | Transform(_)
+            | ConcatTransform(_)
+            | Perspective(_)
+            | Translate(_)
+            | Rotate { .. }
+            | Scale(_)
+            | Skew(_)
+            | CoordSysTransform(_)
     )
 }
 

@@ -1,0 +1,44 @@
+//! `render` on the corpus' motion-blur scene (Aqsis `transmb_test.rib`: moving, scaling and
+//! rotating spheres and a cylinder, with motion blocks that cancel), in a temporary directory:
+//! exit code 0, no panic, and its framebuffer PNG written.
+use std::path::PathBuf;
+use std::process::Command;
+
+fn corpus_dir() -> Option<PathBuf> {
+    if let Ok(p) = std::env::var("ILLUME_CORPUS") {
+        return Some(p.into());
+    }
+    let mut dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    loop {
+        let c = dir.join("shared/corpus");
+        if c.is_dir() {
+            return Some(c);
+        }
+        if !dir.pop() {
+            return None;
+        }
+    }
+}
+
+#[test]
+fn transmb_test_renders_cleanly() {
+    let Some(corpus) = corpus_dir() else {
+        eprintln!("SKIPPED: shared/corpus not found (set ILLUME_CORPUS)");
+        return;
+    };
+    let rib = corpus.join("aqsis2001/transmb_test.rib");
+    assert!(rib.is_file(), "{} missing from the corpus", rib.display());
+    let dir = std::env::temp_dir().join(format!("illume-transmb-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_render"))
+        .arg("-q")
+        .arg(&rib)
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(dir.join("transmb_test.png").is_file(), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
