@@ -1,0 +1,14 @@
+//! The Shading Language runtime of Illume: executes the checked ASTs of `illume-sl` over whole
+//! shading grids. Values are structure-of-arrays over the grid and either uniform (computed once)
+//! or varying ([`Slot`]); varying control flow runs under running-state masks ([`Mask`]).
+//! The built-in function library of RI 3.2 chapter 15 lives in one file per family.
+#![forbid(unsafe_code)]
+
+pub mod colorspaces;
+pub mod geometric;
+pub mod mathfunctions;
+pub mod noise;
+pub mod spline;
+mod value;
+
+pub use value::{zip2, zip3, Mask, Slot, Value};
