@@ -8,6 +8,7 @@ pub mod colorspaces;
 pub mod geometric;
 pub mod mathfunctions;
 pub mod noise;
+pub mod operators;
 pub mod spline;
 mod value;
 
