@@ -147,11 +147,27 @@ mod tests {
     #[test]
     fn hsv_of_primaries() {
         // Red is hue 0, green 1/3, blue 2/3; full saturation and value.
-        assert!(close(from_rgb("hsv", Vec3::X).unwrap(), Vec3::new(0.0, 1.0, 1.0), 1e-6));
-        assert!(close(from_rgb("hsv", Vec3::Y).unwrap(), Vec3::new(1.0 / 3.0, 1.0, 1.0), 1e-6));
-        assert!(close(from_rgb("hsv", Vec3::Z).unwrap(), Vec3::new(2.0 / 3.0, 1.0, 1.0), 1e-6));
+        assert!(close(
+            from_rgb("hsv", Vec3::X).unwrap(),
+            Vec3::new(0.0, 1.0, 1.0),
+            1e-6
+        ));
+        assert!(close(
+            from_rgb("hsv", Vec3::Y).unwrap(),
+            Vec3::new(1.0 / 3.0, 1.0, 1.0),
+            1e-6
+        ));
+        assert!(close(
+            from_rgb("hsv", Vec3::Z).unwrap(),
+            Vec3::new(2.0 / 3.0, 1.0, 1.0),
+            1e-6
+        ));
         // Grey: hue and saturation 0, value = the grey.
-        assert!(close(from_rgb("hsv", Vec3::splat(0.4)).unwrap(), Vec3::new(0.0, 0.0, 0.4), 1e-6));
+        assert!(close(
+            from_rgb("hsv", Vec3::splat(0.4)).unwrap(),
+            Vec3::new(0.0, 0.0, 0.4),
+            1e-6
+        ));
     }
 
     #[test]

@@ -4,12 +4,18 @@
 //! The built-in function library of RI 3.2 chapter 15 lives in one file per family.
 #![forbid(unsafe_code)]
 
+mod builtins;
 pub mod colorspaces;
+mod exec;
 pub mod geometric;
+mod lights;
 pub mod mathfunctions;
 pub mod noise;
 pub mod operators;
 pub mod spline;
+mod texture;
 mod value;
 
+pub use exec::{zero_of, CompiledShader, Exec};
+pub use lights::{in_cone, LightSource, LightView, Lights};
 pub use value::{zip2, zip3, Mask, Slot, Value};

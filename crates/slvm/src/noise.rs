@@ -131,7 +131,10 @@ mod tests {
             lo = lo.min(v);
             hi = hi.max(v);
         }
-        assert!(lo < 0.3 && hi > 0.7, "range [{lo}, {hi}] too narrow for Perlin noise");
+        assert!(
+            lo < 0.3 && hi > 0.7,
+            "range [{lo}, {hi}] too narrow for Perlin noise"
+        );
     }
 
     #[test]

@@ -185,7 +185,13 @@ mod tests {
 
     #[test]
     fn float_promotes_to_triple() {
-        let r = binary(BinOp::Mul, &Value::float(2.0), &v(Vec3::new(1.0, 2.0, 3.0)), 1).unwrap();
+        let r = binary(
+            BinOp::Mul,
+            &Value::float(2.0),
+            &v(Vec3::new(1.0, 2.0, 3.0)),
+            1,
+        )
+        .unwrap();
         assert_eq!(r, v(Vec3::new(2.0, 4.0, 6.0)));
         let r = binary(BinOp::Sub, &v(Vec3::ONE), &Value::float(1.0), 1).unwrap();
         assert_eq!(r, v(Vec3::ZERO));
@@ -213,14 +219,24 @@ mod tests {
     #[test]
     fn matrix_division_is_multiplication_by_the_inverse() {
         let m = crate::geometric::scale(&DMat4::IDENTITY, Vec3::splat(2.0));
-        let r = binary(BinOp::Div, &Value::Matrix(Slot::Uniform(m)), &Value::Matrix(Slot::Uniform(m)), 1)
-            .unwrap();
+        let r = binary(
+            BinOp::Div,
+            &Value::Matrix(Slot::Uniform(m)),
+            &Value::Matrix(Slot::Uniform(m)),
+            1,
+        )
+        .unwrap();
         let Value::Matrix(Slot::Uniform(r)) = r else {
             panic!("matrix expected")
         };
         assert!(r.abs_diff_eq(DMat4::IDENTITY, 1e-12));
-        let r = binary(BinOp::Mul, &Value::float(3.0), &Value::Matrix(Slot::Uniform(DMat4::IDENTITY)), 1)
-            .unwrap();
+        let r = binary(
+            BinOp::Mul,
+            &Value::float(3.0),
+            &Value::Matrix(Slot::Uniform(DMat4::IDENTITY)),
+            1,
+        )
+        .unwrap();
         assert_eq!(
             r,
             Value::Matrix(Slot::Uniform(DMat4::from_diagonal(glam::DVec4::splat(3.0))))

@@ -174,7 +174,11 @@ mod tests {
         let k = [9.0f32, 0.0, 10.0, 20.0, 9.0];
         assert!((spline(Basis::Linear, 0.25, &k) - 5.0).abs() < 1e-5);
         assert_eq!(spline(Basis::Constant, 0.5, &k), 10.0);
-        let v = spline(Basis::CatmullRom, 0.5, &[Vec3::ZERO, Vec3::ONE, Vec3::ONE, Vec3::ZERO]);
+        let v = spline(
+            Basis::CatmullRom,
+            0.5,
+            &[Vec3::ZERO, Vec3::ONE, Vec3::ONE, Vec3::ZERO],
+        );
         // Symmetric knots: at the middle CR gives (-p0 + 9p1 + 9p2 - p3)/16 = 18/16.
         assert!((v.x - 18.0 / 16.0).abs() < 1e-6);
     }
