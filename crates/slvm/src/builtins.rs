@@ -134,8 +134,10 @@ impl Exec<'_> {
         mask: &Mask,
         ty: Type,
     ) -> Value {
-        let vals: Vec<Value> = args.iter().map(|a| self.eval(a, mask)).collect();
-        match self.builtin(&call.name, ty.base, &vals, args, mask) {
+        // Optional "name", value pairs (filterstep's "width", …) are not positional arguments.
+        let positional = &args[..call.optional_from.unwrap_or(args.len()).min(args.len())];
+        let vals: Vec<Value> = positional.iter().map(|a| self.eval(a, mask)).collect();
+        match self.builtin(&call.name, ty.base, &vals, positional, mask) {
             Some(v) => v,
             None => {
                 self.problem(format!(
@@ -212,8 +214,8 @@ impl Exec<'_> {
             ("clamp", 3) => ternary(&a[0], &a[1], &a[2], n, mf::clamp),
             ("step", 2) => binary(&a[0], &a[1], n, mf::step),
             ("smoothstep", 3) => ternary(&a[0], &a[1], &a[2], n, illume_shade::smoothstep),
-            ("mix", 3) => match (&a[0], &a[1]) {
-                (Value::Float(_), Value::Float(_)) => {
+            ("mix", 3) => match (&a[0], &a[1], &a[2]) {
+                (Value::Float(_), Value::Float(_), _) | (_, _, Value::Triple(_)) => {
                     ternary(&a[0], &a[1], &a[2], n, |x, y, t| x * (1.0 - t) + y * t)
                 }
                 _ => {
@@ -222,11 +224,16 @@ impl Exec<'_> {
                     Value::Triple(zip2(&xy, &t, n, |(x, y), &t| *x * (1.0 - t) + *y * t))
                 }
             },
-            ("filterstep", k) if k >= 2 => {
+            ("filterstep", 2) => {
                 let x = fl(&a[1]);
                 let w = self.filter_width(&x);
-                Value::Float(zip3(&fl(&a[0]), &x, &w, n, |&e, &x, &w| {
-                    mf::filterstep(e, x, w)
+                Value::Float(zip3(&fl(&a[0]), &x, &w, n, |&e, &x, &w| mf::filterstep(e, x, w)))
+            }
+            ("filterstep", 3) => {
+                // filterstep(edge, s0, s1): the fraction of [s0, s1] at or above the edge.
+                Value::Float(zip3(&fl(&a[0]), &fl(&a[1]), &fl(&a[2]), n, |&e, &x0, &x1| {
+                    let (lo, hi) = (x0.min(x1), x0.max(x1));
+                    mf::filterstep(e, 0.5 * (lo + hi), hi - lo)
                 }))
             }
             ("noise", _) => {

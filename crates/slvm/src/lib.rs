@@ -7,7 +7,10 @@
 mod builtins;
 pub mod colorspaces;
 mod exec;
+mod frontend;
+mod instance;
 pub mod geometric;
+pub mod library;
 mod lights;
 pub mod mathfunctions;
 pub mod noise;
@@ -17,5 +20,6 @@ mod texture;
 mod value;
 
 pub use exec::{zero_of, CompiledShader, Exec};
+pub use instance::{string_value, SlInstance, SlStats};
 pub use lights::{in_cone, LightSource, LightView, Lights};
 pub use value::{zip2, zip3, Mask, Slot, Value};
