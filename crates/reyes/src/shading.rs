@@ -2,12 +2,13 @@
 //! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
 //! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
 use crate::rayscene::{self, RayScene};
+use crate::slshaders::SlShaders;
 use glam::{DMat4, DVec4, Vec3};
 use illume_geom::Grid;
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
-    displace, shade_surface, Displacement, ShadingEnv, ShadingGrid, SpecularModel, Surface,
-    TextureLookup, WarnOnce,
+    displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
+    Surface, TextureLookup, WarnOnce,
 };
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
@@ -49,6 +50,8 @@ pub(crate) struct FrameShading<'a> {
     seed: u32,
     pub warnings: WarnOnce,
     pub nonfinite: AtomicU64,
+    /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
+    sl: SlShaders,
 }
 
 fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
@@ -103,6 +106,7 @@ impl<'a> FrameShading<'a> {
         textures: Option<&'a dyn TextureLookup>,
     ) -> (FrameShading<'a>, Vec<Diagnostic>) {
         let mut diags = Vec::new();
+        let sl = SlShaders::bind(frame, &mut diags);
         let default_surface = Arc::new(Surface::default_surface());
         let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
         for prim in &frame.primitives {
@@ -110,7 +114,7 @@ impl<'a> FrameShading<'a> {
                 continue;
             };
             let key = Arc::as_ptr(shader) as usize;
-            if surfaces.contains_key(&key) {
+            if surfaces.contains_key(&key) || sl.has_surface(shader) {
                 continue;
             }
             let bound = if shader.name == "null" {
@@ -143,7 +147,7 @@ impl<'a> FrameShading<'a> {
                 continue;
             };
             let key = Arc::as_ptr(shader) as usize;
-            if displacements.contains_key(&key) {
+            if displacements.contains_key(&key) || sl.has_displacement(shader) {
                 continue;
             }
             let bound = match illume_shade::displacement(&shader.name, &shader.params) {
@@ -172,6 +176,9 @@ impl<'a> FrameShading<'a> {
             .enumerate()
             .map(|(index, l)| {
                 let s = &l.shader;
+                if sl.has_light(index) {
+                    return None;
+                }
                 match illume_shade::light(&s.name, &s.params, s.camera_from_shader) {
                     Ok((light, warnings)) => {
                         let mut light = light.with_raytraced_shadows(l.shadows);
@@ -224,6 +231,7 @@ impl<'a> FrameShading<'a> {
             seed: frame.number.unwrap_or(0) as u32,
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
+            sl,
         };
         (shading, diags)
     }
@@ -254,7 +262,12 @@ impl<'a> FrameShading<'a> {
             .os
             .clone()
             .unwrap_or_else(|| vec![Vec3::from(attrs.opacity); n]);
-        let Some(surface) = self.surface_for(attrs) else {
+        let sl_surface = self.sl.surface(attrs);
+        let surface = match sl_surface {
+            Some(_) => Some(self.default_surface.clone()),
+            None => self.surface_for(attrs),
+        };
+        let Some(surface) = surface else {
             return Shaded {
                 p: grid.p.clone(),
                 ci: vec![Vec3::ZERO; n],
@@ -310,7 +323,13 @@ impl<'a> FrameShading<'a> {
                 .cloned()
                 .flatten()
         });
-        if let Some(d) = displacement {
+        if let Some(d) = self.sl.displacement(attrs) {
+            let mut denv = env;
+            if let Some(s) = attrs.displacement.as_ref() {
+                denv.camera_from_shader = s.camera_from_shader;
+            }
+            d.displace(&mut g, &denv);
+        } else if let Some(d) = displacement {
             env.camera_from_shader = attrs
                 .displacement
                 .as_ref()
@@ -318,9 +337,19 @@ impl<'a> FrameShading<'a> {
             displace(&d, &mut g, &env);
             env.camera_from_shader = camera_from_shader;
         }
-        let stats = shade_surface(&surface, &mut g, &lights, &env);
-        if stats.nonfinite > 0 {
-            self.nonfinite.fetch_add(stats.nonfinite as u64, Relaxed);
+        let mut cache = LightCache::run(&lights, &g, &env);
+        cache
+            .lights
+            .extend(self.sl.run_lights(&attrs.lights, &g, &env));
+        let nonfinite = match sl_surface {
+            Some(s) => {
+                let view = illume_slvm::Lights::from_cache(&cache);
+                s.shade_surface(&mut g, &view, &env).nonfinite
+            }
+            None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
+        };
+        if nonfinite > 0 {
+            self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
         }
         Shaded {
             p: g.p,

@@ -227,14 +227,22 @@ impl Exec<'_> {
             ("filterstep", 2) => {
                 let x = fl(&a[1]);
                 let w = self.filter_width(&x);
-                Value::Float(zip3(&fl(&a[0]), &x, &w, n, |&e, &x, &w| mf::filterstep(e, x, w)))
+                Value::Float(zip3(&fl(&a[0]), &x, &w, n, |&e, &x, &w| {
+                    mf::filterstep(e, x, w)
+                }))
             }
             ("filterstep", 3) => {
                 // filterstep(edge, s0, s1): the fraction of [s0, s1] at or above the edge.
-                Value::Float(zip3(&fl(&a[0]), &fl(&a[1]), &fl(&a[2]), n, |&e, &x0, &x1| {
-                    let (lo, hi) = (x0.min(x1), x0.max(x1));
-                    mf::filterstep(e, 0.5 * (lo + hi), hi - lo)
-                }))
+                Value::Float(zip3(
+                    &fl(&a[0]),
+                    &fl(&a[1]),
+                    &fl(&a[2]),
+                    n,
+                    |&e, &x0, &x1| {
+                        let (lo, hi) = (x0.min(x1), x0.max(x1));
+                        mf::filterstep(e, 0.5 * (lo + hi), hi - lo)
+                    },
+                ))
             }
             ("noise", _) => {
                 let c = noise_coords(a, n);

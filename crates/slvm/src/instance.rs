@@ -128,7 +128,12 @@ impl SlInstance {
 
     /// Runs a surface shader over `grid` with `lights` already run for this grid: writes
     /// `Ci`, `Oi` (non-finite values repaired to black / opaque).
-    pub fn shade_surface(&self, grid: &mut ShadingGrid, lights: &Lights, env: &ShadingEnv) -> SlStats {
+    pub fn shade_surface(
+        &self,
+        grid: &mut ShadingGrid,
+        lights: &Lights,
+        env: &ShadingEnv,
+    ) -> SlStats {
         let (ci, oi) = {
             let g: &ShadingGrid = grid;
             let mut exec = Exec::new(&self.shader.program, g, env, lights);
@@ -269,7 +274,10 @@ fn rib_type_fits(rib: illume_rib::Type, base: BaseType) -> bool {
             | (R::Point, BaseType::Point)
             | (R::Vector, BaseType::Vector)
             | (R::Normal, BaseType::Normal)
-            | (R::Point | R::Vector | R::Normal, BaseType::Point | BaseType::Vector | BaseType::Normal)
+            | (
+                R::Point | R::Vector | R::Normal,
+                BaseType::Point | BaseType::Vector | BaseType::Normal
+            )
             | (R::String, BaseType::String)
             | (R::Matrix, BaseType::Matrix)
     )
