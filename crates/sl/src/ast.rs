@@ -45,8 +45,9 @@ pub enum Owner {
 
 /// A whole compiled file: every shader and every function it defines.
 ///
-/// Functions are numbered in the order the parser *finishes* them, so a nested function has a
-/// smaller id than the function around it; [`FunctionDef::parent`] records the nesting.
+/// Functions are numbered in the order their definitions *start* in the source, so a function
+/// has a smaller id than the functions nested in it; [`FunctionDef::parent`] records the
+/// nesting.
 #[derive(Debug, Clone, Default)]
 pub struct Program {
     /// Shaders, in source order (a file normally defines one).
