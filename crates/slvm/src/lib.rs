@@ -7,7 +7,7 @@
 mod builtins;
 pub mod colorspaces;
 mod exec;
-mod frontend;
+pub mod frontend;
 pub mod geometric;
 mod instance;
 pub mod library;
