@@ -95,14 +95,25 @@ fn summary(p: &Program) -> String {
         let params: Vec<String> = f
             .params
             .iter()
-            .map(|q| format!("{}{} {}", if q.output { "output " } else { "" }, q.ty, q.name))
+            .map(|q| {
+                format!(
+                    "{}{} {}",
+                    if q.output { "output " } else { "" },
+                    q.ty,
+                    q.name
+                )
+            })
             .collect();
         s.push_str(&format!(
             "function {} {}({}){}\n",
             f.ret,
             f.name,
             params.join("; "),
-            if f.reads_varying { " reads varying" } else { "" }
+            if f.reads_varying {
+                " reads varying"
+            } else {
+                ""
+            }
         ));
         for v in f.vars.iter().filter(|v| v.kind == VarKind::Local) {
             s.push_str(&format!(

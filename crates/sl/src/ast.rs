@@ -181,7 +181,7 @@ pub struct VarInfo {
     /// `uniform` / `varying` as written, if written.
     pub declared: Option<Detail>,
     /// The detail the spec gives it: `declared` if written, otherwise uniform for shader
-    /// parameters and varying for locals and function parameters (a function parameter without
+    /// parameters and string locals, varying for other locals and function parameters (a function parameter without
     /// a qualifier takes its argument's detail at each call; `Varying` is the safe bound).
     pub detail: Detail,
     /// Inferred detail: equals `detail`, except that an unqualified local is refined to
@@ -515,9 +515,11 @@ pub enum BinaryOp {
     Add,
     /// `-` component-wise.
     Sub,
-    /// `*` component-wise (matrix × matrix is the matrix product).
+    /// `*` component-wise (matrix × matrix is the matrix product; a float times a matrix
+    /// scales every element, and that float operand is *not* wrapped in a `Promote`).
     Mul,
-    /// `/` component-wise (matrix / matrix multiplies by the inverse).
+    /// `/` component-wise (matrix / matrix multiplies by the inverse; matrix / float divides
+    /// every element, the float unpromoted).
     Div,
     /// `.`: dot product of two triples (float result).
     Dot,
@@ -638,7 +640,8 @@ pub struct BuiltinCall {
     /// message passing's value argument).
     pub sig: Signature,
     /// Index of the first `"name", value` optional-parameter pair, for built-ins that take
-    /// them (e.g. `textureinfo`-era extensions); `None` when there are none.
+    /// them (`filterstep (edge, s, "width", 2)`); `None` when the call passes none. The
+    /// signature types the pairs as `string`, then the value's own type.
     pub optional_from: Option<usize>,
 }
 

@@ -16,7 +16,9 @@
 //! | `*` | any type (printf/format arguments) |
 //!
 //! Prefix `o` marks an `output` parameter, suffix `[]` an array of any length, suffix `...`
-//! a parameter that may repeat (zero or more further times), and a trailing `~` after the
+//! a last parameter that may appear any number of times, including none (so `min(f,f,f...)`
+//! takes two or more floats and `spline(f,T,T,T,T,T...)` four or more knots), and a trailing
+//! `~` after the
 //! parameter list allows `"name", value` optional-parameter pairs.
 //!
 //! Built-ins that are inherently varying (they read the grid or the lights, e.g. `diffuse`,
@@ -49,7 +51,7 @@ pub struct ParamSpec {
     pub output: bool,
     /// `[]` suffix: an array of any length.
     pub array: bool,
-    /// `...` suffix: may repeat.
+    /// `...` suffix: may appear any number of times (including none).
     pub repeat: bool,
 }
 

@@ -91,8 +91,7 @@ fn conversion_cost(from: Type, to: Type) -> Option<u32> {
     }
     if from.base == to.base {
         Some(0)
-    } else if from.base == BaseType::Float && (to.base.is_triple() || to.base == BaseType::Matrix)
-    {
+    } else if from.base == BaseType::Float && (to.base.is_triple() || to.base == BaseType::Matrix) {
         Some(1)
     } else if from.base.is_geometric() && to.base.is_geometric() {
         Some(2)
@@ -123,7 +122,9 @@ impl Checker<'_> {
     }
 
     fn frame(&mut self) -> &mut Frame {
-        self.frames.last_mut().expect("checking happens inside a frame")
+        self.frames
+            .last_mut()
+            .expect("checking happens inside a frame")
     }
 
     // ----- definitions ----------------------------------------------------------------------
@@ -189,7 +190,10 @@ impl Checker<'_> {
                 let what = format!("default value of '{}'", p.name);
                 self.coerce(d, p.ty, &what);
             } else if shader {
-                self.error(p.span, format!("shader parameter '{}' needs a default value", p.name));
+                self.error(
+                    p.span,
+                    format!("shader parameter '{}' needs a default value", p.name),
+                );
             }
             let kind = if shader {
                 VarKind::ShaderParam { output: p.output }
@@ -352,7 +356,10 @@ impl Checker<'_> {
         if !unknown(e.ty) && e.ty != Type::FLOAT {
             self.error(
                 e.span,
-                format!("{what} condition: expected a float or relation, found {}", e.ty),
+                format!(
+                    "{what} condition: expected a float or relation, found {}",
+                    e.ty
+                ),
             );
         }
     }
@@ -367,7 +374,10 @@ impl Checker<'_> {
     fn require_light(&mut self, span: Span, what: &str) {
         if let Some(k) = self.frame().shader_kind {
             if k != ShaderKind::Light {
-                self.error(span, format!("'{what}' is only allowed in light shaders, not in a {k} shader"));
+                self.error(
+                    span,
+                    format!("'{what}' is only allowed in light shaders, not in a {k} shader"),
+                );
             }
         }
     }
@@ -403,7 +413,10 @@ impl Checker<'_> {
             Some(v) => {
                 self.expr(v, Some(ret.base));
                 if !in_function || ret == Type::VOID {
-                    self.error(span, "'return' with a value outside a function that returns one");
+                    self.error(
+                        span,
+                        "'return' with a value outside a function that returns one",
+                    );
                 } else {
                     self.coerce(v, ret, "return value");
                 }
@@ -431,7 +444,10 @@ impl Checker<'_> {
                         .insert(v.name.clone(), r);
                 }
                 if v.init.is_some() {
-                    self.error(v.span, format!("extern variable '{}' cannot have an initial value", v.name));
+                    self.error(
+                        v.span,
+                        format!("extern variable '{}' cannot have an initial value", v.name),
+                    );
                 }
                 continue;
             }
@@ -440,7 +456,13 @@ impl Checker<'_> {
                 let what = format!("initial value of '{}'", v.name);
                 self.coerce(init, ty, &what);
             }
-            let detail = d.detail.unwrap_or(Detail::Varying);
+            // RI 3.2 has no varying strings: an unqualified string local is uniform.
+            let default = if d.base == BaseType::String {
+                Detail::Uniform
+            } else {
+                Detail::Varying
+            };
+            let detail = d.detail.unwrap_or(default);
             let id = self.declare(&v.name, v.span, ty, VarKind::Local, d.detail, detail);
             v.var = Some(VarRef::Slot(id));
         }
@@ -491,7 +513,10 @@ impl Checker<'_> {
     fn check_extern_type(&mut self, name: &str, span: Span, ty: Type, r: VarRef) {
         let actual = self.var_type(r);
         if actual != ty && !unknown(actual) {
-            self.error(span, format!("extern '{name}' is declared {ty} but the variable is {actual}"));
+            self.error(
+                span,
+                format!("extern '{name}' is declared {ty} but the variable is {actual}"),
+            );
         }
     }
 
@@ -524,14 +549,20 @@ impl Checker<'_> {
         if let Some(g) = Global::from_name(name) {
             if let Some(kind) = frame.shader_kind {
                 if g.access(kind) == Access::None {
-                    self.error(span, format!("global '{name}' is not available in a {kind} shader"));
+                    self.error(
+                        span,
+                        format!("global '{name}' is not available in a {kind} shader"),
+                    );
                     return None;
                 }
                 if matches!(g, Global::L | Global::Cl | Global::Ol)
                     && matches!(kind, ShaderKind::Surface | ShaderKind::Volume)
                     && frame.illuminance == 0
                 {
-                    self.error(span, format!("'{name}' is only defined inside an illuminance loop"));
+                    self.error(
+                        span,
+                        format!("'{name}' is only defined inside an illuminance loop"),
+                    );
                     return None;
                 }
             }
@@ -546,7 +577,9 @@ impl Checker<'_> {
         if enclosing {
             self.error(
                 span,
-                format!("'{name}' belongs to an enclosing function: declare it 'extern' to use it here"),
+                format!(
+                    "'{name}' belongs to an enclosing function: declare it 'extern' to use it here"
+                ),
             );
         } else {
             self.error(span, format!("undeclared variable '{name}'"));
@@ -558,9 +591,10 @@ impl Checker<'_> {
     fn writable(&self, r: VarRef) -> Result<(), String> {
         match r {
             VarRef::Global(g) => match self.frames.last().and_then(|f| f.shader_kind) {
-                Some(kind) if g.access(kind) != Access::ReadWrite => {
-                    Err(format!("global '{}' is read-only in a {kind} shader", g.name()))
-                }
+                Some(kind) if g.access(kind) != Access::ReadWrite => Err(format!(
+                    "global '{}' is read-only in a {kind} shader",
+                    g.name()
+                )),
                 _ => Ok(()),
             },
             VarRef::Slot(id) => {
@@ -606,9 +640,12 @@ impl Checker<'_> {
             ExprKind::Float(_) => Type::FLOAT,
             ExprKind::Str(_) => Type::STRING,
             ExprKind::Var(v) => {
-                if v.name == "PI" && self.frames.last().is_some_and(|f| {
-                    !f.scopes.iter().any(|s| s.contains_key("PI"))
-                }) {
+                if v.name == "PI"
+                    && self
+                        .frames
+                        .last()
+                        .is_some_and(|f| !f.scopes.iter().any(|s| s.contains_key("PI")))
+                {
                     e.kind = ExprKind::Float(builtins::PI);
                     Type::FLOAT
                 } else {
@@ -622,7 +659,10 @@ impl Checker<'_> {
                     (_, 3) => BaseType::Point,
                     (_, 16) => BaseType::Matrix,
                     (_, n) => {
-                        self.error(span, format!("expected 3 or 16 components in parentheses, found {n}"));
+                        self.error(
+                            span,
+                            format!("expected 3 or 16 components in parentheses, found {n}"),
+                        );
                         BaseType::Unknown
                     }
                 };
@@ -684,7 +724,10 @@ impl Checker<'_> {
                 if unknown(array.ty) {
                     Type::UNKNOWN
                 } else if !array.ty.is_array() {
-                    self.error(span, format!("cannot index a {}: it is not an array", array.ty));
+                    self.error(
+                        span,
+                        format!("cannot index a {}: it is not an array", array.ty),
+                    );
                     Type::UNKNOWN
                 } else {
                     array.ty.element()
@@ -760,7 +803,14 @@ impl Checker<'_> {
         } else {
             expect_lhs
         };
-        self.expr(rhs, if arith || op == BinaryOp::Eq || op == BinaryOp::Ne { expect_rhs } else { None });
+        self.expr(
+            rhs,
+            if arith || op == BinaryOp::Eq || op == BinaryOp::Ne {
+                expect_rhs
+            } else {
+                None
+            },
+        );
         let (l, r) = (lhs.ty, rhs.ty);
         if unknown(l) || unknown(r) {
             return if op.is_condition() || op == BinaryOp::Dot {
@@ -870,7 +920,10 @@ impl Checker<'_> {
                 self.expr(ix, Some(BaseType::Float));
                 self.coerce(ix, Type::FLOAT, "array index");
                 if !var_ty.is_array() && !unknown(var_ty) {
-                    self.error(target.span, format!("cannot index '{}': it is not an array", target.name));
+                    self.error(
+                        target.span,
+                        format!("cannot index '{}': it is not an array", target.name),
+                    );
                     Type::UNKNOWN
                 } else {
                     var_ty.element()
@@ -881,13 +934,23 @@ impl Checker<'_> {
         self.expr(value, Some(ty.base));
         if op != AssignOp::Assign {
             if ty.is_array() || matches!(ty.base, BaseType::String) {
-                self.error(target.span, format!("operator '{}=' cannot apply to {ty}", op.binary().map_or("", |b| b.symbol())));
+                self.error(
+                    target.span,
+                    format!(
+                        "operator '{}=' cannot apply to {ty}",
+                        op.binary().map_or("", |b| b.symbol())
+                    ),
+                );
                 return ty;
             }
-            let scalable = ty.base == BaseType::Matrix && value.ty == Type::FLOAT
+            let scalable = ty.base == BaseType::Matrix
+                && value.ty == Type::FLOAT
                 && matches!(op, AssignOp::Mul | AssignOp::Div);
             if !scalable {
-                let what = format!("right side of '{}='", op.binary().map_or("", |b| b.symbol()));
+                let what = format!(
+                    "right side of '{}='",
+                    op.binary().map_or("", |b| b.symbol())
+                );
                 self.coerce(value, ty, &what);
             }
             return ty;
@@ -942,8 +1005,18 @@ impl Checker<'_> {
         if !users.is_empty() {
             return self.user_call(span, call, &users, &infos);
         }
-        if self.in_progress.iter().any(|id| self.functions[id.0 as usize].name == call.name) {
-            self.error(span, format!("'{}' calls itself: the Shading Language has no recursion", call.name));
+        if self
+            .in_progress
+            .iter()
+            .any(|id| self.functions[id.0 as usize].name == call.name)
+        {
+            self.error(
+                span,
+                format!(
+                    "'{}' calls itself: the Shading Language has no recursion",
+                    call.name
+                ),
+            );
             return Type::UNKNOWN;
         }
         let overloads: Vec<&Overload> = builtins::overloads(&call.name).collect();
@@ -972,8 +1045,14 @@ impl Checker<'_> {
             );
             return Type::UNKNOWN;
         };
-        if call.name == "lightsource" && self.frame().illuminance == 0 && self.frame().shader_kind.is_some() {
-            self.error(span, "'lightsource' may only be called inside an illuminance loop");
+        if call.name == "lightsource"
+            && self.frame().illuminance == 0
+            && self.frame().shader_kind.is_some()
+        {
+            self.error(
+                span,
+                "'lightsource' may only be called inside an illuminance loop",
+            );
         }
         if builtins::is_inherently_varying(&call.name) {
             self.frame().reads_varying = true;
@@ -988,7 +1067,13 @@ impl Checker<'_> {
         ret
     }
 
-    fn user_call(&mut self, span: Span, call: &mut Call, users: &[FuncId], infos: &[ArgInfo]) -> Type {
+    fn user_call(
+        &mut self,
+        span: Span,
+        call: &mut Call,
+        users: &[FuncId],
+        infos: &[ArgInfo],
+    ) -> Type {
         let mut best: Option<(u32, FuncId)> = None;
         for &id in users {
             let f = &self.functions[id.0 as usize];
@@ -999,7 +1084,10 @@ impl Checker<'_> {
             let mut ok = true;
             for (p, a) in f.params.iter().zip(infos) {
                 if p.output {
-                    ok &= a.assignable && (a.ty == p.ty || unknown(a.ty) || (p.ty.array == Some(ArrayLen::Open) && a.ty.base == p.ty.base));
+                    ok &= a.assignable
+                        && (a.ty == p.ty
+                            || unknown(a.ty)
+                            || (p.ty.array == Some(ArrayLen::Open) && a.ty.base == p.ty.base));
                 } else {
                     match conversion_cost(a.ty, p.ty) {
                         Some(c) => cost += c,
@@ -1020,7 +1108,13 @@ impl Checker<'_> {
             return Type::UNKNOWN;
         };
         if self.in_progress.contains(&id) {
-            self.error(span, format!("'{}' calls itself: the Shading Language has no recursion", call.name));
+            self.error(
+                span,
+                format!(
+                    "'{}' calls itself: the Shading Language has no recursion",
+                    call.name
+                ),
+            );
         }
         let f = &self.functions[id.0 as usize];
         let sig = Signature {
@@ -1030,7 +1124,11 @@ impl Checker<'_> {
                 .iter()
                 .zip(infos)
                 .map(|(p, a)| SigParam {
-                    ty: if p.ty.array == Some(ArrayLen::Open) { a.ty } else { p.ty },
+                    ty: if p.ty.array == Some(ArrayLen::Open) {
+                        a.ty
+                    } else {
+                        p.ty
+                    },
                     output: p.output,
                 })
                 .collect(),
@@ -1075,7 +1173,9 @@ impl Checker<'_> {
     fn assignable(&self, a: &Expr) -> bool {
         match &a.kind {
             ExprKind::Var(v) => v.var.is_some(),
-            ExprKind::Index { array, .. } => matches!(&array.kind, ExprKind::Var(v) if v.var.is_some()),
+            ExprKind::Index { array, .. } => {
+                matches!(&array.kind, ExprKind::Var(v) if v.var.is_some())
+            }
             _ => false,
         }
     }
@@ -1136,7 +1236,11 @@ impl Checker<'_> {
 fn arith_result(op: BinaryOp, a: BaseType, b: BaseType) -> BaseType {
     use BaseType as B;
     if a == b {
-        return if a == B::Point && op == BinaryOp::Sub { B::Vector } else { a };
+        return if a == B::Point && op == BinaryOp::Sub {
+            B::Vector
+        } else {
+            a
+        };
     }
     if (a == B::Point || b == B::Point) && matches!(op, BinaryOp::Add | BinaryOp::Sub) {
         return B::Point;
@@ -1151,7 +1255,10 @@ fn arith_result(op: BinaryOp, a: BaseType, b: BaseType) -> BaseType {
 fn output_hint(overloads: &[&Overload], args: &[ArgInfo]) -> String {
     let needs_output = overloads.iter().any(|o| {
         o.params.len() == args.len()
-            && o.params.iter().zip(args).any(|(p, a)| p.output && !a.assignable)
+            && o.params
+                .iter()
+                .zip(args)
+                .any(|(p, a)| p.output && !a.assignable)
     });
     if needs_output {
         " (an output argument must be a variable)".to_string()
@@ -1172,20 +1279,19 @@ fn match_builtin(
     let fixed = ov.params.len();
     let repeat = ov.params.last().is_some_and(|p| p.repeat);
     let positional = if ov.pairs {
-        let split = (fixed..args.len())
+        let split = (fixed.saturating_sub(usize::from(repeat))..args.len())
             .find(|&i| args[i].is_str_literal)
             .unwrap_or(args.len());
-        if split != fixed || (args.len() - split) % 2 != 0 {
+        if split < fixed.saturating_sub(usize::from(repeat)) || (args.len() - split) % 2 != 0 {
             return None;
         }
         split
     } else {
         args.len()
     };
-    if positional < fixed || (!repeat && positional > fixed) {
-        return None;
-    }
-    if repeat && positional < fixed {
+    // A repeating last parameter may appear zero or more times.
+    let min = if repeat { fixed - 1 } else { fixed };
+    if positional < min || (!repeat && positional > fixed) {
         return None;
     }
     let spec_at = |i: usize| &ov.params[i.min(fixed - 1)];
@@ -1201,7 +1307,9 @@ fn match_builtin(
         }
     }
     let t = t.unwrap_or(if ov.ret == Slot::Generic {
-        expected.filter(|b| *b == BaseType::Float).unwrap_or(BaseType::Float)
+        expected
+            .filter(|b| *b == BaseType::Float)
+            .unwrap_or(BaseType::Float)
     } else {
         BaseType::Float
     });
@@ -1215,7 +1323,11 @@ fn match_builtin(
     for (i, a) in args.iter().enumerate() {
         if i >= positional {
             // "name", value pairs: names are strings, values any type.
-            let ty = if (i - positional) % 2 == 0 { Type::STRING } else { a.ty };
+            let ty = if (i - positional) % 2 == 0 {
+                Type::STRING
+            } else {
+                a.ty
+            };
             if (i - positional) % 2 == 0 && a.ty.base != BaseType::String {
                 return None;
             }
@@ -1234,7 +1346,10 @@ fn match_builtin(
             if !a.ty.is_array() {
                 return None;
             }
-            Type { base, array: a.ty.array }
+            Type {
+                base,
+                array: a.ty.array,
+            }
         } else if s.slot == Slot::Any {
             a.ty
         } else {
@@ -1247,7 +1362,10 @@ fn match_builtin(
         } else {
             cost += conversion_cost(a.ty, ty)?;
         }
-        params.push(SigParam { ty, output: s.output });
+        params.push(SigParam {
+            ty,
+            output: s.output,
+        });
     }
     let ret = match ov.ret {
         Slot::Fixed(b) => b,

@@ -115,7 +115,9 @@ fn collect_outer(s: &Stmt, set: &mut HashSet<(Owner, VarId)>) {
     match &s.kind {
         StmtKind::Decl(d) => d.vars.iter().for_each(|v| visit(v.var)),
         StmtKind::Block(b) => b.stmts.iter().for_each(|s| collect_outer(s, set)),
-        StmtKind::If { then, otherwise, .. } => {
+        StmtKind::If {
+            then, otherwise, ..
+        } => {
             collect_outer(then, set);
             if let Some(o) = otherwise {
                 collect_outer(o, set);
@@ -214,7 +216,11 @@ impl Walker<'_, '_> {
     fn var_detail(&self, r: VarRef) -> Detail {
         match r {
             VarRef::Global(g) => g.detail(),
-            VarRef::Slot(id) => self.details.get(id.0 as usize).copied().unwrap_or(Detail::Varying),
+            VarRef::Slot(id) => self
+                .details
+                .get(id.0 as usize)
+                .copied()
+                .unwrap_or(Detail::Varying),
             VarRef::Outer { owner, var } => self
                 .done
                 .get(&owner)
@@ -436,7 +442,11 @@ impl Walker<'_, '_> {
     fn call(&mut self, call: &mut Call, vc: bool, span: Span) -> Detail {
         let outputs: Vec<bool> = match &call.callee {
             Some(Callee::Builtin(b)) => b.sig.params.iter().map(|p| p.output).collect(),
-            Some(Callee::User(id)) => self.user_outputs.get(id.0 as usize).cloned().unwrap_or_default(),
+            Some(Callee::User(id)) => self
+                .user_outputs
+                .get(id.0 as usize)
+                .cloned()
+                .unwrap_or_default(),
             None => Vec::new(),
         };
         let mut d = match &call.callee {

@@ -19,6 +19,9 @@ use crate::types::{ArrayLen, BaseType, Detail, ShaderKind, Type};
 
 /// Stop after this many syntax errors: later ones are usually consequences of the first.
 const MAX_ERRORS: usize = 50;
+/// Deepest nesting of expressions and statements accepted, so hostile input such as ten
+/// thousand `(` reports an error instead of overflowing the stack (here and in the checker).
+const MAX_DEPTH: usize = 256;
 
 /// Parses a preprocessed token stream. Syntax errors go to `diags`; the returned program holds
 /// everything that parsed (with [`StmtKind::Error`] / [`ExprKind::Error`] where recovery
@@ -37,6 +40,7 @@ pub fn parse(tokens: &[Token], diags: &mut Vec<Diagnostic>) -> Program {
         },
         diags,
         errors: 0,
+        depth: 0,
         program: Program::default(),
         owners: Vec::new(),
     };
@@ -55,6 +59,8 @@ struct Parser<'a> {
     eof: Token,
     diags: &'a mut Vec<Diagnostic>,
     errors: usize,
+    /// Current recursion depth of `statement` + `unary`.
+    depth: usize,
     program: Program,
     /// Enclosing shader/function definitions (for [`FunctionDef::parent`]).
     owners: Vec<Owner>,
@@ -444,6 +450,22 @@ impl<'a> Parser<'a> {
     }
 
     fn statement(&mut self) -> PResult<Stmt> {
+        self.nested(Self::statement_inner)
+    }
+
+    /// Runs `f` one nesting level deeper, failing past [`MAX_DEPTH`].
+    fn nested<T>(&mut self, f: impl FnOnce(&mut Self) -> PResult<T>) -> PResult<T> {
+        if self.depth >= MAX_DEPTH {
+            let span = self.peek().span;
+            return Err(self.error_at(span, format!("nesting deeper than {MAX_DEPTH} levels")));
+        }
+        self.depth += 1;
+        let r = f(self);
+        self.depth -= 1;
+        r
+    }
+
+    fn statement_inner(&mut self) -> PResult<Stmt> {
         let t = self.peek().clone();
         let span = t.span;
         let kind = match &t.kind {
@@ -713,6 +735,10 @@ impl<'a> Parser<'a> {
     }
 
     fn assignment(&mut self) -> PResult<Expr> {
+        self.nested(Self::assignment_inner)
+    }
+
+    fn assignment_inner(&mut self) -> PResult<Expr> {
         let lhs = self.ternary()?;
         let op = match self.peek().kind {
             TokKind::Punct(Punct::Assign) => AssignOp::Assign,
@@ -775,9 +801,16 @@ impl<'a> Parser<'a> {
     /// Precedence climbing over the binary operators.
     fn binary(&mut self, min_prec: u8) -> PResult<Expr> {
         let mut lhs = self.unary()?;
+        // A left-associative chain builds a tree as deep as it is long: count it as nesting.
+        let mut chain = 0;
         while let Some((op, prec)) = binary_op(self.peek()) {
             if prec < min_prec {
                 break;
+            }
+            chain += 1;
+            if self.depth + chain > MAX_DEPTH {
+                let span = self.peek().span;
+                return Err(self.error_at(span, format!("nesting deeper than {MAX_DEPTH} levels")));
             }
             let op_tok = self.bump();
             let rhs = self.binary(prec + 1)?;
@@ -794,6 +827,10 @@ impl<'a> Parser<'a> {
     }
 
     fn unary(&mut self) -> PResult<Expr> {
+        self.nested(Self::unary_inner)
+    }
+
+    fn unary_inner(&mut self) -> PResult<Expr> {
         let t = self.peek().clone();
         let op = match &t.kind {
             TokKind::Punct(Punct::Minus) => Some(UnaryOp::Neg),
@@ -869,7 +906,13 @@ impl<'a> Parser<'a> {
                 self.bump();
                 Ok(Expr::new(ExprKind::Str(s.clone()), t.span))
             }
-            TokKind::Ident(w) if !is_reserved(w) => {
+            // `surface ("Kd", x)` and `displacement (…)` are message-passing calls even though
+            // the words also introduce shaders.
+            TokKind::Ident(w)
+                if !is_reserved(w)
+                    || (matches!(w.as_str(), "surface" | "displacement")
+                        && self.peek_at(1).is(Punct::LParen)) =>
+            {
                 self.bump();
                 if self.at(Punct::LParen) {
                     return self.call(w.clone(), t.span);

@@ -25,6 +25,9 @@ const MAX_INCLUDE_DEPTH: usize = 40;
 /// Limit on macro-expansion depth (self-reference is already blocked; this bounds mutual
 /// recursion through arguments).
 const MAX_EXPANSION_DEPTH: usize = 200;
+/// Limit on tokens one macro expansion may produce, against exponential macro bombs
+/// (`#define A B B`, `#define B C C`, …).
+const MAX_EXPANSION_TOKENS: usize = 1 << 20;
 
 /// Preprocessor settings (what `slc -I dir -D NAME=value` sets).
 #[derive(Debug, Clone, Default)]
@@ -422,8 +425,11 @@ impl Pp<'_> {
                 i += 1;
                 continue;
             };
-            if depth > MAX_EXPANSION_DEPTH {
-                self.err(t.span, format!("macro '{name}' expands too deeply"));
+            if depth > MAX_EXPANSION_DEPTH || out.len() > MAX_EXPANSION_TOKENS {
+                self.err(
+                    t.span,
+                    format!("macro '{name}' expands too deeply or too far"),
+                );
                 return;
             }
             let mac = mac.clone();
@@ -855,6 +861,22 @@ mod tests {
             "{d:?}"
         );
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn exponential_macros_stop_with_an_error() {
+        let mut src = String::new();
+        for i in 0..40 {
+            src.push_str(&format!("#define M{i} M{} M{}\n", i + 1, i + 1));
+        }
+        src.push_str("M0\n");
+        let (t, d, _) = pp(&src);
+        assert!(t.len() <= 4 * MAX_EXPANSION_TOKENS);
+        assert!(
+            d.iter()
+                .any(|d| d.message.contains("expands too deeply or too far")),
+            "{d:?}"
+        );
     }
 
     #[test]

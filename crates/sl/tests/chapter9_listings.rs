@@ -19,8 +19,9 @@ fn reference_text() -> Option<String> {
     let path = std::env::var_os("ILLUME_REFERENCE")
         .map(PathBuf::from)
         .unwrap_or_else(|| {
-            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join("../../../shared/reference/advanced-renderman-ch9-illumination-and-lights.txt")
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(
+                "../../../shared/reference/advanced-renderman-ch9-illumination-and-lights.txt",
+            )
         });
     match std::fs::read_to_string(&path) {
         Ok(t) => Some(t),
@@ -49,7 +50,8 @@ fn extract_listings(text: &str) -> BTreeMap<u32, String> {
             i += 1;
             continue;
         };
-        let next_non_blank = |from: usize| (from..lines.len()).find(|&k| !lines[k].trim().is_empty());
+        let next_non_blank =
+            |from: usize| (from..lines.len()).find(|&k| !lines[k].trim().is_empty());
         let mut k = match next_non_blank(i + 1) {
             Some(k) if lines[k].trim_start().starts_with("```") => k,
             _ => {
@@ -124,7 +126,11 @@ fn compile_listing(listings: &BTreeMap<u32, String>, n: u32, errata: bool) -> Co
     let mut src = String::new();
     for p in prerequisites(n).iter().chain(std::iter::once(&n)) {
         let code = &listings[p];
-        src.push_str(&if errata { apply_errata(*p, code) } else { code.clone() });
+        src.push_str(&if errata {
+            apply_errata(*p, code)
+        } else {
+            code.clone()
+        });
     }
     compile_str(&format!("listing9.{n}.sl"), &src, &PpOptions::default())
 }
@@ -136,7 +142,9 @@ fn every_chapter_listing_is_found() {
     let found: Vec<u32> = listings.keys().copied().collect();
     assert_eq!(found, (1..=19).collect::<Vec<u32>>());
     // Listing 9.5's two page-broken blocks were joined: raysphere and Environment.
-    assert!(listings[&5].contains("raysphere (point E") && listings[&5].contains("color Environment"));
+    assert!(
+        listings[&5].contains("raysphere (point E") && listings[&5].contains("color Environment")
+    );
 }
 
 #[test]
@@ -160,16 +168,18 @@ fn the_errata_are_needed_where_they_say() {
     // As printed, Listing 9.9 passes five arguments to fresnel, which has no such form.
     let out = compile_listing(&listings, 9, false);
     assert!(
-        out.render_diagnostics()
-            .contains("error: no overload of 'fresnel' takes (vector, normal, float, float, vector, vector)"),
+        out.render_diagnostics().contains(
+            "error: no overload of 'fresnel' takes (vector, normal, float, float, vector, vector)"
+        ),
         "{}",
         out.render_diagnostics()
     );
     // As printed, Listing 9.11 names `C1`, which is not a variable.
     let out = compile_listing(&listings, 11, false);
     assert!(
-        out.render_diagnostics()
-            .contains("extern 'C1' is neither a global variable nor a variable of an enclosing function"),
+        out.render_diagnostics().contains(
+            "extern 'C1' is neither a global variable nor a variable of an enclosing function"
+        ),
         "{}",
         out.render_diagnostics()
     );
@@ -182,20 +192,42 @@ fn shinymetal_resolves_macros_functions_and_globals() {
     let out = compile_listing(&listings, 8, true);
     assert!(!out.has_errors(), "{}", out.render_diagnostics());
     let p = &out.program;
-    let sh = p.shaders.iter().find(|s| s.name == "shinymetal").expect("shinymetal shader");
+    let sh = p
+        .shaders
+        .iter()
+        .find(|s| s.name == "shinymetal")
+        .expect("shinymetal shader");
     assert_eq!(sh.kind, ShaderKind::Surface);
     // DECLARE_DEFAULTED_ENVPARAMS added envname, envspace, envrad.
     let names: Vec<&str> = sh.params.iter().map(|p| p.name.as_str()).collect();
     assert_eq!(
         names,
-        ["Ka", "Kd", "Ks", "roughness", "Kr", "blur", "envname", "envspace", "envrad"]
+        [
+            "Ka",
+            "Kd",
+            "Ks",
+            "roughness",
+            "Kr",
+            "blur",
+            "envname",
+            "envspace",
+            "envrad"
+        ]
     );
     assert_eq!(sh.params[8].detail, Some(Detail::Uniform));
     // `Ci = MaterialShinyMetal (…)` calls the user function, not a builtin.
-    let StmtKind::Expr(e) = &sh.body.stmts[1].kind else { panic!() };
-    let ExprKind::Assign { value, .. } = &e.kind else { panic!() };
-    let ExprKind::Call(call) = &value.kind else { panic!("{value:?}") };
-    let Some(Callee::User(id)) = call.callee else { panic!() };
+    let StmtKind::Expr(e) = &sh.body.stmts[1].kind else {
+        panic!()
+    };
+    let ExprKind::Assign { value, .. } = &e.kind else {
+        panic!()
+    };
+    let ExprKind::Call(call) = &value.kind else {
+        panic!("{value:?}")
+    };
+    let Some(Callee::User(id)) = call.callee else {
+        panic!()
+    };
     assert_eq!(p.function(id).name, "MaterialShinyMetal");
     assert_eq!(value.ty.base, BaseType::Color);
     assert_eq!(value.detail, Detail::Varying);

@@ -36,10 +36,18 @@ fn block<'a>(b: &'a Block, out: &mut Vec<&'a Expr>) {
 
 fn stmt<'a>(s: &'a Stmt, out: &mut Vec<&'a Expr>) {
     match &s.kind {
-        StmtKind::Decl(d) => d.vars.iter().filter_map(|v| v.init.as_ref()).for_each(|e| expr(e, out)),
+        StmtKind::Decl(d) => d
+            .vars
+            .iter()
+            .filter_map(|v| v.init.as_ref())
+            .for_each(|e| expr(e, out)),
         StmtKind::Expr(e) => expr(e, out),
         StmtKind::Block(b) => block(b, out),
-        StmtKind::If { cond, then, otherwise } => {
+        StmtKind::If {
+            cond,
+            then,
+            otherwise,
+        } => {
             expr(cond, out);
             stmt(then, out);
             if let Some(o) = otherwise {
@@ -50,7 +58,12 @@ fn stmt<'a>(s: &'a Stmt, out: &mut Vec<&'a Expr>) {
             expr(cond, out);
             stmt(body, out);
         }
-        StmtKind::For { init, cond, step, body } => {
+        StmtKind::For {
+            init,
+            cond,
+            step,
+            body,
+        } => {
             for e in [init, cond, step].into_iter().flatten() {
                 expr(e, out);
             }
@@ -85,7 +98,11 @@ fn expr<'a>(e: &'a Expr, out: &mut Vec<&'a Expr>) {
             expr(lhs, out);
             expr(rhs, out);
         }
-        ExprKind::Ternary { cond, then, otherwise } => {
+        ExprKind::Ternary {
+            cond,
+            then,
+            otherwise,
+        } => {
             expr(cond, out);
             expr(then, out);
             expr(otherwise, out);
@@ -132,7 +149,10 @@ fn builtin(c: &Call) -> &BuiltinCall {
 }
 
 fn var<'a>(p: &'a Program, owner: Owner, name: &str) -> &'a VarInfo {
-    p.vars(owner).iter().find(|v| v.name == name).unwrap_or_else(|| panic!("no variable {name}"))
+    p.vars(owner)
+        .iter()
+        .find(|v| v.name == name)
+        .unwrap_or_else(|| panic!("no variable {name}"))
 }
 
 const S0: Owner = Owner::Shader(ShaderId(0));
@@ -142,14 +162,29 @@ fn noise_return_type_comes_from_the_assignment_context() {
     let p = compile(
         "surface s() { float f = noise(P); color c = noise(P); point q = noise(P); vector v = noise(s, t); Ci = Cs * noise(P); f = float noise(P*2); }",
     );
-    let rets: Vec<BaseType> = calls(&p, "noise").iter().map(|(e, c)| {
-        assert_eq!(e.ty, builtin(c).sig.ret, "expression type and chosen signature agree");
-        e.ty.base
-    }).collect();
+    let rets: Vec<BaseType> = calls(&p, "noise")
+        .iter()
+        .map(|(e, c)| {
+            assert_eq!(
+                e.ty,
+                builtin(c).sig.ret,
+                "expression type and chosen signature agree"
+            );
+            e.ty.base
+        })
+        .collect();
     use BaseType::*;
     assert_eq!(rets, vec![Float, Color, Point, Vector, Color, Float]);
     let (_, c) = calls(&p, "noise")[3];
-    assert_eq!(builtin(c).sig.params.iter().map(|q| q.ty).collect::<Vec<_>>(), vec![Type::FLOAT, Type::FLOAT]);
+    assert_eq!(
+        builtin(c)
+            .sig
+            .params
+            .iter()
+            .map(|q| q.ty)
+            .collect::<Vec<_>>(),
+        vec![Type::FLOAT, Type::FLOAT]
+    );
 }
 
 #[test]
@@ -162,13 +197,19 @@ fn float_to_triple_promotions_are_explicit() {
     assert_eq!(promotes.len(), 3);
     for e in &promotes {
         assert_eq!(e.ty, Type::COLOR);
-        let ExprKind::Promote(inner) = &e.kind else { unreachable!() };
+        let ExprKind::Promote(inner) = &e.kind else {
+            unreachable!()
+        };
         assert_eq!(inner.ty, Type::FLOAT);
     }
     let (_, mix) = calls(&p, "mix")[0];
     let sig: Vec<Type> = builtin(mix).sig.params.iter().map(|q| q.ty).collect();
     assert_eq!(sig, vec![Type::COLOR, Type::COLOR, Type::FLOAT]);
-    assert_eq!(mix.args[1].ty, Type::COLOR, "the argument was promoted to the parameter type");
+    assert_eq!(
+        mix.args[1].ty,
+        Type::COLOR,
+        "the argument was promoted to the parameter type"
+    );
 }
 
 #[test]
@@ -200,7 +241,11 @@ fn point_arithmetic_follows_the_spec() {
 fn implicit_conversions_between_geometric_types_become_casts() {
     let p = compile("surface s() { normal Nf = faceforward(normalize(N), I); vector v = N; }");
     let (e, ff) = calls(&p, "faceforward")[0];
-    assert_eq!(e.ty, Type::NORMAL, "faceforward returns its first argument's type");
+    assert_eq!(
+        e.ty,
+        Type::NORMAL,
+        "faceforward returns its first argument's type"
+    );
     assert_eq!(builtin(ff).sig.params[1].ty, Type::VECTOR);
     let casts: Vec<&Expr> = all_exprs(&p)
         .into_iter()
@@ -219,7 +264,11 @@ fn space_casts_and_matrix_literals() {
     let casts: Vec<(BaseType, String, Type)> = all_exprs(&p)
         .into_iter()
         .filter_map(|e| match &e.kind {
-            ExprKind::Cast { to, space: Some(sp), expr } => match &sp.kind {
+            ExprKind::Cast {
+                to,
+                space: Some(sp),
+                expr,
+            } => match &sp.kind {
                 ExprKind::Str(s) => Some((*to, s.clone(), expr.ty)),
                 _ => None,
             },
@@ -246,7 +295,9 @@ fn pi_is_a_constant_unless_shadowed() {
         .iter()
         .any(|e| matches!(e.kind, ExprKind::Float(v) if v == std::f64::consts::PI)));
     let f = &p.functions[0];
-    let StmtKind::Return(Some(r)) = &f.body.stmts[0].kind else { panic!() };
+    let StmtKind::Return(Some(r)) = &f.body.stmts[0].kind else {
+        panic!()
+    };
     assert!(matches!(&r.kind, ExprKind::Var(v) if v.var == Some(VarRef::Slot(VarId(0)))));
 }
 
@@ -256,18 +307,29 @@ fn extern_resolves_globals_and_enclosing_variables() {
         "color f() { extern point P; float k = 2; float g() { extern float k; return k * xcomp(P); } return g(); }",
     );
     let f0 = &p.functions[0];
-    let StmtKind::Decl(d) = &f0.body.stmts[0].kind else { panic!() };
+    let StmtKind::Decl(d) = &f0.body.stmts[0].kind else {
+        panic!()
+    };
     assert_eq!(d.vars[0].var, Some(VarRef::Global(Global::P)));
     let g = &p.functions[1];
     assert_eq!(g.parent, Some(Owner::Function(FuncId(0))));
-    let StmtKind::Decl(d) = &g.body.stmts[0].kind else { panic!() };
+    let StmtKind::Decl(d) = &g.body.stmts[0].kind else {
+        panic!()
+    };
     let k = var(&p, Owner::Function(FuncId(0)), "k");
     assert_eq!(k.kind, VarKind::Local);
     assert_eq!(
         d.vars[0].var,
-        Some(VarRef::Outer { owner: Owner::Function(FuncId(0)), var: VarId(0) })
+        Some(VarRef::Outer {
+            owner: Owner::Function(FuncId(0)),
+            var: VarId(0)
+        })
     );
-    assert_eq!(k.inferred, Detail::Varying, "an extern target keeps its default detail");
+    assert_eq!(
+        k.inferred,
+        Detail::Varying,
+        "an extern target keeps its default detail"
+    );
     assert!(g.reads_varying);
 }
 
@@ -299,13 +361,22 @@ fn texture_calls_split_channel_coordinates_and_parameters() {
         .filter(|e| matches!(e.kind, ExprKind::Texture(_)))
         .collect();
     assert_eq!(tex.len(), 3);
-    let ExprKind::Texture(t0) = &tex[0].kind else { unreachable!() };
+    let ExprKind::Texture(t0) = &tex[0].kind else {
+        unreachable!()
+    };
     assert_eq!(tex[0].ty, Type::COLOR);
-    assert_eq!((t0.coords.len(), t0.params.len(), t0.channel.is_some()), (2, 2, false));
-    let ExprKind::Texture(t1) = &tex[1].kind else { unreachable!() };
+    assert_eq!(
+        (t0.coords.len(), t0.params.len(), t0.channel.is_some()),
+        (2, 2, false)
+    );
+    let ExprKind::Texture(t1) = &tex[1].kind else {
+        unreachable!()
+    };
     assert_eq!(tex[1].ty, Type::FLOAT);
     assert!(t1.channel.is_some());
-    let ExprKind::Texture(t2) = &tex[2].kind else { unreachable!() };
+    let ExprKind::Texture(t2) = &tex[2].kind else {
+        unreachable!()
+    };
     assert_eq!(t2.kind, TextureKind::Shadow);
     assert_eq!(t2.coords[0].ty, Type::POINT);
     assert!(tex.iter().all(|e| e.detail == Detail::Varying));
@@ -319,9 +390,21 @@ fn message_passing_and_printf_take_any_type() {
     );
     let (_, c) = calls(&p, "surface")[0];
     let b = builtin(c);
-    assert_eq!(b.sig.params[1], SigParam { ty: Type::COLOR, output: true });
+    assert_eq!(
+        b.sig.params[1],
+        SigParam {
+            ty: Type::COLOR,
+            output: true
+        }
+    );
     let (_, ls) = calls(&p, "lightsource")[0];
-    assert_eq!(builtin(ls).sig.params[1], SigParam { ty: Type::FLOAT, output: true });
+    assert_eq!(
+        builtin(ls).sig.params[1],
+        SigParam {
+            ty: Type::FLOAT,
+            output: true
+        }
+    );
     let (pe, pf) = calls(&p, "printf")[0];
     assert_eq!(pe.ty, Type::VOID);
     let types: Vec<Type> = builtin(pf).sig.params.iter().map(|q| q.ty).collect();
@@ -363,11 +446,17 @@ fn uniform_inference_refines_locals_fed_only_by_uniform_values() {
         ["k", "n", "i", "a", "b", "w", "j", "u", "v"].map(inferred),
         [Uniform, Uniform, Uniform, Varying, Varying, Varying, Varying, Uniform, Varying]
     );
-    assert_eq!(var(&p, S0, "k").detail, Varying, "the spec default for an unqualified local");
+    assert_eq!(
+        var(&p, S0, "k").detail,
+        Varying,
+        "the spec default for an unqualified local"
+    );
     assert_eq!(var(&p, S0, "k").declared, None);
     assert_eq!(var(&p, S0, "u").declared, Some(Uniform));
     // The expression reading only uniform values is uniform.
-    let StmtKind::Decl(d) = &p.shaders[0].body.stmts[0].kind else { panic!() };
+    let StmtKind::Decl(d) = &p.shaders[0].body.stmts[0].kind else {
+        panic!()
+    };
     assert_eq!(d.vars[0].init.as_ref().unwrap().detail, Uniform);
 }
 
@@ -381,7 +470,10 @@ fn calls_of_pure_functions_with_uniform_arguments_are_uniform() {
     assert!(!p.functions[0].reads_varying);
     assert!(p.functions[1].reads_varying);
     use Detail::*;
-    assert_eq!(["a", "b", "c"].map(|n| var(&p, S0, n).inferred), [Uniform, Varying, Varying]);
+    assert_eq!(
+        ["a", "b", "c"].map(|n| var(&p, S0, n).inferred),
+        [Uniform, Varying, Varying]
+    );
 }
 
 #[test]
@@ -403,11 +495,19 @@ fn lighting_bodies_are_varying_control() {
         "light l(float intensity = 1;) { float k = 0; illuminate (point \"shader\" (0,0,0)) { k = 1; Cl = intensity * k; } }
          surface s() { float c = 0; illuminance (P, N, PI/2) { c += 1; } Ci = c; }",
     );
-    assert_eq!(var(&p, Owner::Shader(ShaderId(0)), "k").inferred, Detail::Varying);
-    assert_eq!(var(&p, Owner::Shader(ShaderId(1)), "c").inferred, Detail::Varying);
+    assert_eq!(
+        var(&p, Owner::Shader(ShaderId(0)), "k").inferred,
+        Detail::Varying
+    );
+    assert_eq!(
+        var(&p, Owner::Shader(ShaderId(1)), "c").inferred,
+        Detail::Varying
+    );
     // Cl inside the illuminance loop resolves to the global.
     let p = compile("surface s() { color C = 0; illuminance (P) { C += Cl; } Ci = C; }");
-    assert!(all_exprs(&p).iter().any(|e| matches!(&e.kind, ExprKind::Var(v) if v.var == Some(VarRef::Global(Global::Cl)))));
+    assert!(all_exprs(&p)
+        .iter()
+        .any(|e| matches!(&e.kind, ExprKind::Var(v) if v.var == Some(VarRef::Global(Global::Cl)))));
 }
 
 #[test]

@@ -5,7 +5,10 @@ use illume_sl::{compile_str, PpOptions};
 /// The rendered diagnostics of compiling `src` as `e.sl`.
 fn diags(src: &str) -> Vec<String> {
     let out = compile_str("e.sl", src, &PpOptions::default());
-    out.render_diagnostics().lines().map(str::to_string).collect()
+    out.render_diagnostics()
+        .lines()
+        .map(str::to_string)
+        .collect()
 }
 
 fn one(src: &str) -> String {

@@ -1,0 +1,6 @@
+/* RI 3.2 standard shader: constant colour, no lighting. */
+surface constant ()
+{
+    Oi = Os;
+    Ci = Os * Cs;
+}
