@@ -282,3 +282,6 @@ fn a_broken_sl_file_warns_with_its_location_and_falls_back_to_the_builtin() {
     assert_eq!(max_abs_diff(&img, &builtin), 0.0, "the built-in plastic renders instead");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[path = "sl/conformance.rs"]
+mod conformance;
