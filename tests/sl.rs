@@ -102,7 +102,9 @@ fn sl_vs_builtin(case: &str, name: &str, source: &str, lights: &str, request: &s
     std::fs::write(dir.join(format!("{name}.sl")), source).unwrap();
     let (sl, warnings) = render(&scene(Some(&dir), lights, request));
     assert!(
-        !warnings.iter().any(|w| w.contains("does not compile") || w.contains("shader `")),
+        !warnings
+            .iter()
+            .any(|w| w.contains("does not compile") || w.contains("shader `")),
         "{case}: {warnings:#?}"
     );
     let (builtin, _) = render(&scene(None, lights, request));
@@ -220,13 +222,21 @@ fn chapter_listings_render_like_the_builtin_surfaces() {
 fn chapter_light_listings_light_like_the_builtin_lights() {
     // Listings 9.14–9.17 as SL lights, lighting the built-in plastic.
     let cases: [(&str, u32, &str); 4] = [
-        ("ambientlight", 14, r#"LightSource "ambientlight" 1 "intensity" [0.3]"#),
+        (
+            "ambientlight",
+            14,
+            r#"LightSource "ambientlight" 1 "intensity" [0.3]"#,
+        ),
         (
             "distantlight",
             15,
             r#"LightSource "distantlight" 1 "intensity" [0.9] "from" [-4 5 -3] "to" [0 0 0]"#,
         ),
-        ("pointlight", 16, r#"LightSource "pointlight" 1 "intensity" [14] "from" [2 2 0]"#),
+        (
+            "pointlight",
+            16,
+            r#"LightSource "pointlight" 1 "intensity" [14] "from" [2 2 0]"#,
+        ),
         (
             "spotlight",
             17,
@@ -257,13 +267,20 @@ fn an_sl_file_on_the_searchpath_overrides_the_builtin_of_that_name() {
         "surface plastic (float Kd = 0.5) { Oi = Os; Ci = Os * color (Kd, 0, 0); }",
     )
     .unwrap();
-    let (img, warnings) = render(&scene(Some(&dir), LIGHTS, r#"Surface "plastic" "Kd" [0.75]"#));
+    let (img, warnings) = render(&scene(
+        Some(&dir),
+        LIGHTS,
+        r#"Surface "plastic" "Kd" [0.75]"#,
+    ));
     assert!(warnings.is_empty(), "{warnings:#?}");
     let covered: Vec<&[f32]> = img.chunks(4).filter(|p| p[3] > 0.999).collect();
     assert!(covered.len() > 200);
     // Every fully covered pixel is exactly the SL shader's constant (0.75, 0, 0).
     for p in covered {
-        assert!((p[0] - 0.75).abs() < 1e-5 && p[1].abs() < 1e-6 && p[2].abs() < 1e-6, "{p:?}");
+        assert!(
+            (p[0] - 0.75).abs() < 1e-5 && p[1].abs() < 1e-6 && p[2].abs() < 1e-6,
+            "{p:?}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -276,10 +293,21 @@ fn a_broken_sl_file_warns_with_its_location_and_falls_back_to_the_builtin() {
     let (img, warnings) = render(&scene(Some(&dir), LIGHTS, r#"Surface "plastic""#));
     let (builtin, _) = render(&scene(None, LIGHTS, r#"Surface "plastic""#));
     let located = format!("{}:2:", path.display());
-    let hits: Vec<&String> = warnings.iter().filter(|w| w.contains("does not compile")).collect();
-    assert_eq!(hits.len(), 1, "one warning for the one shader: {warnings:#?}");
+    let hits: Vec<&String> = warnings
+        .iter()
+        .filter(|w| w.contains("does not compile"))
+        .collect();
+    assert_eq!(
+        hits.len(),
+        1,
+        "one warning for the one shader: {warnings:#?}"
+    );
     assert!(hits[0].contains(&located), "no {located} in {}", hits[0]);
-    assert_eq!(max_abs_diff(&img, &builtin), 0.0, "the built-in plastic renders instead");
+    assert_eq!(
+        max_abs_diff(&img, &builtin),
+        0.0,
+        "the built-in plastic renders instead"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

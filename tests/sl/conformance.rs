@@ -45,10 +45,19 @@ fn fparam(name: &str, v: &[f32]) -> Param {
 }
 
 fn lights() -> Vec<Light> {
-    let amb = light("ambientlight", &[fparam("intensity", &[0.2])], DMat4::IDENTITY).unwrap().0;
+    let amb = light(
+        "ambientlight",
+        &[fparam("intensity", &[0.2])],
+        DMat4::IDENTITY,
+    )
+    .unwrap()
+    .0;
     let along_z = light(
         "distantlight",
-        &[fparam("from", &[0.0, 0.0, 0.0]), fparam("to", &[0.0, 0.0, 1.0])],
+        &[
+            fparam("from", &[0.0, 0.0, 0.0]),
+            fparam("to", &[0.0, 0.0, 1.0]),
+        ],
         DMat4::IDENTITY,
     )
     .unwrap()
@@ -137,7 +146,15 @@ fn expected(name: &str, q: Pt) -> Option<DVec3> {
         "arithmetic" => DVec3::new(s + t * 2.0, s * t - 1.0, (s + 1.0) / (t + 1.0)),
         "precedence" => splat(2.0 + 3.0 * s - t / 2.0),
         "if_else" => splat(if s < 0.5 { s } else { 1.0 - s }),
-        "nested_if" => splat(if s > 0.2 { if t > 0.4 { 1.0 } else { 0.5 } } else { 0.0 }),
+        "nested_if" => splat(if s > 0.2 {
+            if t > 0.4 {
+                1.0
+            } else {
+                0.5
+            }
+        } else {
+            0.0
+        }),
         "for_loop" => splat((0..5).map(|i| s.powi(i)).sum()),
         "while_break" => {
             let (mut x, mut n) = (1.0, 0.0);
@@ -156,11 +173,7 @@ fn expected(name: &str, q: Pt) -> Option<DVec3> {
                 DVec3::new(0.0, s, t)
             }
         }
-        "logic" => DVec3::new(
-            b(s > 0.2 && t < 0.6),
-            b(s < 0.1 || t > 0.9),
-            b(s <= 0.5),
-        ),
+        "logic" => DVec3::new(b(s > 0.2 && t < 0.6), b(s < 0.1 || t > 0.9), b(s <= 0.5)),
         "output_param" => {
             let x = s * 3.5 + t;
             DVec3::new(x.floor(), x - x.floor(), 0.0)
@@ -222,11 +235,7 @@ fn expected(name: &str, q: Pt) -> Option<DVec3> {
         // scale(translate(1, (1,2,3)), 2): the scale applies first (object side, like RIB).
         "matrices" => DVec3::new(2.0 * s + 1.0, 2.0 * t + 2.0, 3.0) + splat(8.0),
         "colorspace" => hsv_to_rgb(s, 1.0, 1.0) + rgb_to_hsv(DVec3::new(t, 0.5, 0.25)),
-        "noise" => DVec3::new(
-            0.5,
-            b((0.9 * s).floor() == (0.9 * s + 0.15).floor()),
-            1.0,
-        ),
+        "noise" => DVec3::new(0.5, b((0.9 * s).floor() == (0.9 * s + 0.15).floor()), 1.0),
         "spline" => {
             let cr = [1.0, 4.0, 2.0, 3.0][(s * 3.0).round() as usize];
             let lin = 20.0 * t;
@@ -234,7 +243,11 @@ fn expected(name: &str, q: Pt) -> Option<DVec3> {
         }
         "derivatives" => {
             // Forward differences, backward on the last column: Du(s²) = 2s ± du.
-            let du_s2 = if q.last_u { 2.0 * s - q.du } else { 2.0 * s + q.du };
+            let du_s2 = if q.last_u {
+                2.0 * s - q.du
+            } else {
+                2.0 * s + q.du
+            };
             DVec3::new(du_s2, 3.0, 4.0 * q.du * 0.5)
         }
         // Du(P) × Dv(P) = (0,0,4), oriented like Ng = (0,0,-1).
@@ -268,7 +281,11 @@ fn every_conformance_shader_gives_its_expected_value() {
         .filter(|p| p.extension().is_some_and(|e| e == "sl"))
         .collect();
     files.sort();
-    assert!(files.len() >= 30, "conformance suite incomplete: {}", files.len());
+    assert!(
+        files.len() >= 30,
+        "conformance suite incomplete: {}",
+        files.len()
+    );
     let lights = lights();
     let refs: Vec<&Light> = lights.iter().collect();
     let mut env = ShadingEnv::new();
@@ -306,7 +323,10 @@ fn every_conformance_shader_gives_its_expected_value() {
             };
             let got = g.ci[i].as_dvec3();
             if (got - want).abs().max_element() > 2e-5 {
-                failures.push(format!("{name} at s={:.3} t={:.3}: got {got:?}, want {want:?}", q.s, q.t));
+                failures.push(format!(
+                    "{name} at s={:.3} t={:.3}: got {got:?}, want {want:?}",
+                    q.s, q.t
+                ));
             }
         }
     }

@@ -37,7 +37,11 @@ pub fn chapter9() -> Option<BTreeMap<u32, String>> {
     while i < lines.len() {
         let number = lines[i]
             .strip_prefix("Listing 9.")
-            .map(|r| r.chars().take_while(char::is_ascii_digit).collect::<String>())
+            .map(|r| {
+                r.chars()
+                    .take_while(char::is_ascii_digit)
+                    .collect::<String>()
+            })
             .and_then(|d| d.parse::<u32>().ok());
         let (Some(n), Some(mut open)) = (number, next_non_blank(i + 1).filter(|&k| is_fence(k)))
         else {
@@ -46,7 +50,9 @@ pub fn chapter9() -> Option<BTreeMap<u32, String>> {
         };
         let mut code = String::new();
         loop {
-            let close = (open + 1..lines.len()).find(|&k| is_fence(k)).unwrap_or(lines.len());
+            let close = (open + 1..lines.len())
+                .find(|&k| is_fence(k))
+                .unwrap_or(lines.len());
             for l in &lines[open + 1..close] {
                 code.push_str(l);
                 code.push('\n');

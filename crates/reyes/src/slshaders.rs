@@ -78,11 +78,14 @@ impl SlShaders {
     pub fn bind(frame: &Frame, diags: &mut Vec<Diagnostic>) -> SlShaders {
         let mut sl = SlShaders::default();
         let mut reported = HashSet::new();
+        // Each distinct request is looked up once, found or not (no file-system access per
+        // primitive).
+        let mut tried: HashSet<(u8, usize)> = HashSet::new();
         for prim in &frame.primitives {
             let a = &prim.attributes;
             if let Some(s) = a.surface.as_ref() {
                 let key = Arc::as_ptr(s) as usize;
-                if s.name != "null" && !sl.surfaces.contains_key(&key) {
+                if s.name != "null" && tried.insert((0, key)) {
                     if let Some(i) = bind(
                         frame,
                         s,
@@ -97,7 +100,7 @@ impl SlShaders {
             }
             if let Some(s) = a.displacement.as_ref() {
                 let key = Arc::as_ptr(s) as usize;
-                if !sl.displacements.contains_key(&key) {
+                if tried.insert((1, key)) {
                     if let Some(i) = bind(
                         frame,
                         s,

@@ -68,17 +68,29 @@ fn time(mut f: impl FnMut()) -> Duration {
 
 fn main() {
     let lights = [
-        light("ambientlight", &[floats("intensity", &[0.1])], DMat4::IDENTITY).unwrap().0,
         light(
-            "distantlight",
-            &[floats("from", &[-4.0, 5.0, -3.0]), floats("to", &[0.0, 0.0, 0.0])],
+            "ambientlight",
+            &[floats("intensity", &[0.1])],
             DMat4::IDENTITY,
         )
         .unwrap()
         .0,
         light(
             "distantlight",
-            &[floats("from", &[5.0, 1.0, -2.0]), floats("to", &[0.0, 0.0, 0.0])],
+            &[
+                floats("from", &[-4.0, 5.0, -3.0]),
+                floats("to", &[0.0, 0.0, 0.0]),
+            ],
+            DMat4::IDENTITY,
+        )
+        .unwrap()
+        .0,
+        light(
+            "distantlight",
+            &[
+                floats("from", &[5.0, 1.0, -2.0]),
+                floats("to", &[0.0, 0.0, 0.0]),
+            ],
             DMat4::IDENTITY,
         )
         .unwrap()

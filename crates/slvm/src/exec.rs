@@ -836,14 +836,14 @@ fn lvalue_of(arg: &Expr) -> Option<LValue> {
     match &arg.kind {
         ExprKind::Var(u) => Some(LValue {
             name: u.name.clone(),
-            span: arg.span.clone(),
+            span: arg.span,
             index: None,
             var: u.var,
         }),
         ExprKind::Index { array, index } => match &array.kind {
             ExprKind::Var(u) => Some(LValue {
                 name: u.name.clone(),
-                span: arg.span.clone(),
+                span: arg.span,
                 index: Some(index.clone()),
                 var: u.var,
             }),
@@ -910,10 +910,10 @@ fn read_element(a: &Value, idx: &Slot<f32>, n: usize) -> Option<Value> {
         Slot::Uniform(i) => Some(elems[clampi(*i)].clone()),
         Slot::Varying(ix) => {
             let mut out = elems[0].clone();
-            for k in 1..elems.len() {
+            for (k, e) in elems.iter().enumerate().skip(1) {
                 let m = Mask::from_bits(ix.iter().map(|&i| clampi(i) == k).collect());
                 if !m.none() {
-                    out.assign(&elems[k], Some(&m), n);
+                    out.assign(e, Some(&m), n);
                 }
             }
             Some(out)

@@ -30,7 +30,10 @@ fn run_surface(src: &str, grid: &mut ShadingGrid) {
 #[test]
 fn constant_surface_writes_ci_and_oi() {
     let mut g = ShadingGrid::new(3, 2);
-    run_surface("surface c() { Oi = Os; Ci = Os * color(0.25, 0.5, 1); }", &mut g);
+    run_surface(
+        "surface c() { Oi = Os; Ci = Os * color(0.25, 0.5, 1); }",
+        &mut g,
+    );
     for i in 0..g.len() {
         assert_eq!(g.ci[i], Vec3::new(0.25, 0.5, 1.0));
         assert_eq!(g.oi[i], Vec3::ONE);
@@ -45,9 +48,9 @@ fn varying_if_writes_only_its_points() {
         &mut g,
     );
     let want = [0.0, 0.0, 1.0, 1.0];
-    for i in 0..4 {
-        assert_eq!(g.ci[i].x, want[i], "point {i}");
-        assert_eq!(g.ci[i].y, if want[i] == 1.0 { 1.0 } else { 0.5 });
+    for (i, &w) in want.iter().enumerate() {
+        assert_eq!(g.ci[i].x, w, "point {i}");
+        assert_eq!(g.ci[i].y, if w == 1.0 { 1.0 } else { 0.5 });
     }
 }
 
