@@ -313,3 +313,39 @@ fn a_broken_sl_file_warns_with_its_location_and_falls_back_to_the_builtin() {
 
 #[path = "sl/conformance.rs"]
 mod conformance;
+
+#[test]
+fn an_sl_displacement_moves_the_surface() {
+    // `P += 0.2 normalize(N)` on a unit sphere is a sphere of radius 1.2. Metric: total
+    // coverage (sum of alpha) against an undisplaced radius-1.2 sphere; threshold 1% relative
+    // (the two are diced differently, so their silhouettes differ by sub-pixel amounts only).
+    let dir = shader_dir("displacement");
+    std::fs::write(
+        dir.join("grow.sl"),
+        "displacement grow (float amount = 0.1) {\n  P += amount * normalize (N);\n  N = calculatenormal (P);\n}\n",
+    )
+    .unwrap();
+    let sphere = |searchpath: Option<&Path>, body: &str| {
+        let option = searchpath.map_or(String::new(), |d| {
+            format!("Option \"searchpath\" \"shader\" [\"{}\"]\n", d.display())
+        });
+        format!(
+            "{option}Format 64 64 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" [40]\n\
+             WorldBegin\n  Translate 0 0 6\n  Surface \"constant\"\n  {body}\nWorldEnd\n"
+        )
+    };
+    let displaced = sphere(
+        Some(&dir),
+        "Attribute \"displacementbound\" \"sphere\" [0.25]\n  Displacement \"grow\" \"amount\" [0.2]\n  Sphere 1 -1 1 360",
+    );
+    let (img, warnings) = render(&displaced);
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    let (reference, _) = render(&sphere(None, "Sphere 1.2 -1.2 1.2 360"));
+    let (undisplaced, _) = render(&sphere(None, "Sphere 1 -1 1 360"));
+    let coverage = |img: &[f32]| img.chunks(4).map(|p| p[3] as f64).sum::<f64>();
+    let (d, r, u) = (coverage(&img), coverage(&reference), coverage(&undisplaced));
+    assert!((d - r).abs() / r < 0.01, "displaced {d} vs radius-1.2 {r}");
+    // The test can tell: the undisplaced sphere covers (1/1.2)² ≈ 0.69 as much.
+    assert!(u / r < 0.8, "undisplaced {u} vs {r}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
