@@ -349,3 +349,33 @@ fn an_sl_displacement_moves_the_surface() {
     assert!(u / r < 0.8, "undisplaced {u} vs {r}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn an_sl_surface_reads_an_sl_lights_output_parameter() {
+    // Message passing (RI 3.2 §15.6 `lightsource`): the light computes `tag` while it runs;
+    // the surface reads it per light. Two lights with tags 0.25 and 0.5 (the second from its
+    // RIB parameter list) sum to 0.75 on every covered pixel.
+    let dir = shader_dir("message");
+    std::fs::write(
+        dir.join("tagged.sl"),
+        "light tagged (float intensity = 1, scale = 1; output varying float tag = 0) {\n  \
+         solar (vector (0, 0, 1), 0) { tag = 0.25 * scale; Cl = intensity; }\n}\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("readtags.sl"),
+        "surface readtags () {\n  float total = 0;\n  illuminance (P) {\n    float x = 0;\n    \
+         if (lightsource (\"tag\", x) != 0) total += x;\n  }\n  Oi = Os; Ci = total;\n}\n",
+    )
+    .unwrap();
+    let lights = r#"LightSource "tagged" 1
+  LightSource "tagged" 2 "scale" [2]"#;
+    let (img, warnings) = render(&scene(Some(&dir), lights, r#"Surface "readtags""#));
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    let covered: Vec<&[f32]> = img.chunks(4).filter(|p| p[3] > 0.999).collect();
+    assert!(covered.len() > 200);
+    for p in covered {
+        assert!((p[0] - 0.75).abs() < 1e-6, "{p:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -338,12 +338,20 @@ impl<'a> FrameShading<'a> {
             env.camera_from_shader = camera_from_shader;
         }
         let mut cache = LightCache::run(&lights, &g, &env);
-        cache
-            .lights
-            .extend(self.sl.run_lights(&attrs.lights, &g, &env));
+        let builtin_count = cache.lights.len();
+        let mut sl_outputs = Vec::new();
+        for (proxy, samples, outputs) in self.sl.run_lights(&attrs.lights, &g, &env) {
+            cache.lights.push((proxy, samples));
+            sl_outputs.push(outputs);
+        }
         let nonfinite = match sl_surface {
             Some(s) => {
-                let view = illume_slvm::Lights::from_cache(&cache);
+                let mut view = illume_slvm::Lights::from_cache(&cache);
+                for (light, outputs) in view.lights[builtin_count..].iter_mut().zip(&sl_outputs) {
+                    if let illume_slvm::LightSource::Builtin(request) = light.source {
+                        light.source = illume_slvm::LightSource::Sl { outputs, request };
+                    }
+                }
                 s.shade_surface(&mut g, &view, &env).nonfinite
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,

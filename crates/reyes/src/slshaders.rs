@@ -9,7 +9,7 @@ use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{Light, LightSamples, ShadingEnv, ShadingGrid};
 use illume_sl::types::ShaderKind;
 use illume_slvm::library::ShaderLibrary;
-use illume_slvm::SlInstance;
+use illume_slvm::{SlInstance, Value};
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
@@ -164,22 +164,22 @@ impl SlShaders {
         self.displacements.get(&(Arc::as_ptr(s) as usize))
     }
 
-    /// Runs the SL lights among `indices` over `grid`: (stand-in, samples) pairs to append to
-    /// the grid's light cache.
+    /// Runs the SL lights among `indices` over `grid`: (stand-in, samples, parameters after
+    /// the run) to append to the grid's light cache; the parameters answer `lightsource()`.
     pub fn run_lights<'s>(
         &'s self,
         indices: &[usize],
         grid: &ShadingGrid,
         env: &ShadingEnv,
-    ) -> Vec<(&'s Light, LightSamples)> {
+    ) -> Vec<(&'s Light, LightSamples, Vec<(String, Value)>)> {
         indices
             .iter()
             .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
             .map(|l| {
                 let mut lenv = *env;
                 lenv.camera_from_shader = l.camera_from_shader;
-                let (samples, _outputs) = l.shader.run_light(grid, &lenv);
-                (&l.proxy, samples)
+                let (samples, outputs) = l.shader.run_light(grid, &lenv);
+                (&l.proxy, samples, outputs)
             })
             .collect()
     }

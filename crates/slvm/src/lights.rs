@@ -13,8 +13,12 @@ use illume_shade::{category_matches, Light, LightCache, LightSamples, ParamValue
 #[derive(Clone, Copy)]
 pub enum LightSource<'a> {
     Builtin(&'a Light),
-    /// A Shading Language light: its parameters (by name) after it ran on this grid.
-    Sl(&'a [(String, Value)]),
+    /// A Shading Language light: its parameters (by name) after it ran on this grid, then the
+    /// RIB parameters of its request (`__category` and the like need no declaration).
+    Sl {
+        outputs: &'a [(String, Value)],
+        request: &'a Light,
+    },
 }
 
 /// One light evaluated over the grid.
@@ -27,16 +31,20 @@ pub struct LightView<'a> {
 impl LightView<'_> {
     /// `lightsource(name, …)`: the light's parameter as a uniform value.
     pub fn param(&self, name: &str) -> Option<Value> {
-        match self.source {
-            LightSource::Builtin(l) => l.param(name).map(|p| match p {
+        let builtin = |l: &Light| {
+            l.param(name).map(|p| match p {
                 ParamValue::Float(f) => Value::float(*f),
                 ParamValue::Color(c) | ParamValue::Point(c) => Value::triple(*c),
                 ParamValue::String(s) => Value::string(s),
-            }),
-            LightSource::Sl(params) => params
+            })
+        };
+        match self.source {
+            LightSource::Builtin(l) => builtin(l),
+            LightSource::Sl { outputs, request } => outputs
                 .iter()
                 .find(|(n, _)| n == name)
-                .map(|(_, v)| v.clone()),
+                .map(|(_, v)| v.clone())
+                .or_else(|| builtin(request)),
         }
     }
 
