@@ -273,9 +273,21 @@ impl Exec<'_> {
                 }
             }
             ("random", 0) => {
+                // Keyed by the point's undisplaced position (not its index in the grid, which
+                // every grid shares), the call site and the frame: the same bits whatever the
+                // dicing order or thread count.
                 self.random_site += 1;
                 let (site, seed) = (self.random_site, self.env.seed);
-                let f = |i: usize, c: u32| noise::random(i, site.wrapping_mul(3) + c, seed);
+                let key = |i: usize| {
+                    let p = self.grid.p[i];
+                    illume_shade::lowbias32(
+                        p.x.to_bits()
+                            ^ illume_shade::lowbias32(
+                                p.y.to_bits() ^ illume_shade::lowbias32(p.z.to_bits()),
+                            ),
+                    ) as usize
+                };
+                let f = |i: usize, c: u32| noise::random(key(i), site.wrapping_mul(3) + c, seed);
                 if ret == BaseType::Float {
                     Value::Float(Slot::Varying((0..n).map(|i| f(i, 0)).collect()))
                 } else {

@@ -32,6 +32,9 @@ pub fn zero_of(ty: Type) -> Value {
     }
 }
 
+/// See `exec_loop`.
+const MAX_LOOP_ITERATIONS: u32 = 1 << 16;
+
 /// Index of a global in [`Global::ALL`].
 fn gidx(g: Global) -> usize {
     Global::ALL.iter().position(|&x| x == g).unwrap_or(0)
@@ -464,8 +467,16 @@ impl<'a> Exec<'a> {
         self.push_loop();
         let mut running = mask.clone();
         // A bound on iterations so that a shader whose condition never fails cannot hang the
-        // renderer (no RI 3.2 program needs a million iterations on one grid).
-        for _ in 0..1_000_000 {
+        // renderer (no RI 3.2 program needs 65536 iterations on one grid); hitting it warns.
+        let mut iterations = 0u32;
+        loop {
+            iterations += 1;
+            if iterations > MAX_LOOP_ITERATIONS {
+                self.problem(format!(
+                    "a loop ran {MAX_LOOP_ITERATIONS} times on one grid and was stopped"
+                ));
+                break;
+            }
             let live = {
                 let f = self.frames.last().expect("a frame runs");
                 let l = f.loops.last().expect("pushed");

@@ -88,3 +88,31 @@ surface plastic(float Ka = 1, Kd = 0.5, Ks = 0.5, roughness = 0.1; color specula
         assert!(d < 1e-6, "point {i}: {:?} vs {:?}", g.ci[i], builtin.ci[i]);
     }
 }
+
+#[test]
+fn a_runaway_loop_stops_and_the_shader_finishes() {
+    let mut g = ShadingGrid::new(2, 2);
+    run_surface(
+        "surface c() { float x = 0; while (x >= 0) x += 1; Ci = color (1, 0, 0); }",
+        &mut g,
+    );
+    assert!(g.ci.iter().all(|c| *c == Vec3::X));
+}
+
+#[test]
+fn random_depends_on_the_point_not_its_grid_index() {
+    let src = "surface r() { Ci = float random(); }";
+    let shade_at = |z: f32| {
+        let mut g = ShadingGrid::new(3, 3);
+        for (i, p) in g.p.iter_mut().enumerate() {
+            *p = Vec3::new(i as f32, 0.0, z);
+        }
+        run_surface(src, &mut g);
+        g.ci
+    };
+    let (a, b, c) = (shade_at(1.0), shade_at(1.0), shade_at(2.0));
+    assert_eq!(a, b, "repeatable");
+    assert_ne!(a, c, "another grid gets other numbers");
+    assert!(a.iter().all(|v| (0.0..1.0).contains(&v.x)));
+    assert!(a.windows(2).any(|w| w[0] != w[1]), "varies over the grid");
+}
