@@ -379,3 +379,16 @@ fn an_sl_surface_reads_an_sl_lights_output_parameter() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn listing_9_10_diffuse_and_specular_match_the_builtin_functions() {
+    // Listing 9.10 defines `diffuse` and `specular` as user functions, which override the
+    // built-ins for Listing 9.1's MaterialPlastic that follows them.
+    let wrapper = surface_cases()[0].2;
+    let Some(src) = with_listings(&[10, 1], wrapper) else {
+        return;
+    };
+    let d = sl_vs_builtin("listing910", "plastic", &src, LIGHTS, "Surface \"plastic\"");
+    eprintln!("Listing 9.10 + 9.1 plastic vs built-in: max abs difference {d}");
+    assert!(d <= THRESHOLD, "max abs difference {d} > 1/255");
+}
