@@ -91,6 +91,26 @@ impl Exec<'_> {
         self.grid.footprint(i).map(|k| *c.at(k))
     }
 
+    /// `Du(p)·du` and `Dv(p)·dv` per point (grid differences; zero for a uniform point).
+    fn footprint_edges(&self, p: &Slot<Vec3>) -> (Vec<Vec3>, Vec<Vec3>) {
+        let g = self.grid;
+        match p {
+            Slot::Uniform(_) => (vec![Vec3::ZERO; self.n], vec![Vec3::ZERO; self.n]),
+            // The surface position itself: its analytic derivatives, as the built-in lights.
+            Slot::Varying(v) if *v == g.p => (
+                g.dpdu.iter().map(|d| *d * g.du).collect(),
+                g.dpdv.iter().map(|d| *d * g.dv).collect(),
+            ),
+            Slot::Varying(v) => {
+                let (du, dv) = (g.deriv_u(v), g.deriv_v(v));
+                (
+                    du.into_iter().map(|d| d * g.du).collect(),
+                    dv.into_iter().map(|d| d * g.dv).collect(),
+                )
+            }
+        }
+    }
+
     pub(crate) fn texture_call(&mut self, call: &TextureCall, mask: &Mask, ty: Type) -> Value {
         let n = self.n;
         let name = match self.eval(&call.map, mask) {
@@ -165,22 +185,26 @@ impl Exec<'_> {
             }
             TextureKind::Shadow => {
                 let world_from_camera = self.env.camera_from_world.inverse();
-                let p: Vec<Slot<Vec3>> = coords
-                    .iter()
-                    .map(|c| {
-                        triple_slot(c)
-                            .map(|p| world_from_camera.transform_point3(p.as_dvec3()).as_vec3())
-                    })
-                    .collect();
+                let to_world = |p: Vec3| world_from_camera.transform_point3(p.as_dvec3()).as_vec3();
+                let p: Vec<Slot<Vec3>> = coords.iter().map(triple_slot).collect();
                 if p.is_empty() {
                     return zero_of(ty);
                 }
+                // One point: its footprint is the parallelogram P, P + Du(P)du, P + Dv(P)dv,
+                // as the built-in shadow lights take it (from dPdu du, dPdv dv).
+                let edges = (p.len() < 4).then(|| self.footprint_edges(&p[0]));
                 (0..n)
                     .map(|i| {
                         if !mask.get(i) {
                             return [0.0; 4];
                         }
-                        let pw = self.corners(&p, i);
+                        let pw = match &edges {
+                            Some((eu, ev)) => {
+                                let (c, eu, ev) = (*p[0].at(i), eu[i], ev[i]);
+                                [c, c + eu, c + ev, c + eu + ev].map(to_world)
+                            }
+                            None => self.corners(&p, i).map(to_world),
+                        };
                         let v = tex.shadow(&name, pw, &opts.shadow).unwrap_or_else(|| {
                             missing = true;
                             0.0
