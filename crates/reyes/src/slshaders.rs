@@ -22,6 +22,9 @@ pub(crate) struct SlLight {
     pub camera_from_shader: DMat4,
 }
 
+/// An SL light's parameters by name after it ran on a grid (what `lightsource()` reads).
+pub(crate) type LightParams = Vec<(String, Value)>;
+
 #[derive(Default)]
 pub(crate) struct SlShaders {
     surfaces: HashMap<usize, Arc<SlInstance>>,
@@ -171,7 +174,7 @@ impl SlShaders {
         indices: &[usize],
         grid: &ShadingGrid,
         env: &ShadingEnv,
-    ) -> Vec<(&'s Light, LightSamples, Vec<(String, Value)>)> {
+    ) -> Vec<(&'s Light, LightSamples, LightParams)> {
         indices
             .iter()
             .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
