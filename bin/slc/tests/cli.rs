@@ -125,3 +125,20 @@ fn a_missing_file_is_a_source_error() {
     assert!(String::from_utf8_lossy(&out.stderr)
         .starts_with("/nonexistent/dir/none.sl:1:1: error: cannot read"));
 }
+
+#[test]
+fn latin1_bytes_in_comments_do_not_stop_compilation() {
+    let d = scratch("latin1");
+    let p = d.join("old.sl");
+    let mut bytes = b"/* (c) 1991 Fran\xe7ois \xa9 */\nsurface old () { Ci = Cs; }\n".to_vec();
+    bytes.extend_from_slice(b"/* tail \xff */\n");
+    std::fs::write(&p, bytes).unwrap();
+    let out = slc().arg(&p).output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::remove_dir_all(&d).ok();
+}

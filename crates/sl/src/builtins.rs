@@ -21,6 +21,13 @@
 //! `~` after the
 //! parameter list allows `"name", value` optional-parameter pairs.
 //!
+//! `transform` takes any geometric type and keeps it (a normal is transformed as a normal, as
+//! PRMan and Aqsis do) rather than RI 3.2's point-only form, so `transform ("world", N)` does
+//! not silently turn a normal into a point; `vtransform`/`ntransform` remain.
+//!
+//! `arraylength` (PRMan's, not RI 3.2's) is included because functions taking `float a[]`
+//! need it to loop over their argument.
+//!
 //! Built-ins that are inherently varying (they read the grid or the lights, e.g. `diffuse`,
 //! `Du`, `noise` of a varying point is varying anyway) are listed in [`is_inherently_varying`].
 
@@ -154,10 +161,10 @@ v reflect(v,v)
 v refract(v,v,f)
 V fresnel(v,n,f,of,of)
 V fresnel(v,n,f,of,of,ov,ov)
-p transform(s,p)
-p transform(s,s,p)
-p transform(m,p)
-p transform(s,m,p)
+G transform(s,G)
+G transform(s,s,G)
+G transform(m,G)
+G transform(s,m,G)
 v vtransform(s,v)
 v vtransform(s,s,v)
 v vtransform(m,v)
@@ -197,6 +204,7 @@ f rendererinfo(s,oA)
 T Du(T)
 T Dv(T)
 T Deriv(T,f)
+f arraylength(A[])
 ";
 
 /// Names whose result varies over the grid whatever their arguments: they read the lights,

@@ -36,7 +36,7 @@ pub fn check(prog: &mut Program, diags: &mut Vec<Diagnostic>) {
             }
             Item::Function(id) => {
                 c.function(id);
-                c.func_scopes[0].push(id);
+                c.register_function(id);
             }
         }
     }
@@ -181,6 +181,34 @@ impl Checker<'_> {
         f.body = body;
         f.vars = frame.vars;
         f.reads_varying = frame.reads_varying;
+    }
+
+    /// Makes a checked function callable in the innermost scope; a second definition with
+    /// the same name and parameter types in that scope is an error (calls would be ambiguous).
+    fn register_function(&mut self, id: FuncId) {
+        let f = &self.functions[id.0 as usize];
+        let key: Vec<(Type, bool)> = f.params.iter().map(|p| (p.ty, p.output)).collect();
+        let scope = self.func_scopes.last().expect("a scope is open");
+        let duplicate = scope.iter().any(|other| {
+            let g = &self.functions[other.0 as usize];
+            g.name == f.name
+                && g.params
+                    .iter()
+                    .map(|p| (p.ty, p.output))
+                    .collect::<Vec<_>>()
+                    == key
+        });
+        if duplicate {
+            let (span, name) = (f.span, f.name.clone());
+            self.error(
+                span,
+                format!("function '{name}' is already defined with these parameter types"),
+            );
+        }
+        self.func_scopes
+            .last_mut()
+            .expect("a scope is open")
+            .push(id);
     }
 
     fn params(&mut self, params: &mut [Param], shader: bool) {
@@ -336,10 +364,7 @@ impl Checker<'_> {
             StmtKind::Function(id) => {
                 let id = *id;
                 self.function(id);
-                self.func_scopes
-                    .last_mut()
-                    .expect("a block scope is open")
-                    .push(id);
+                self.register_function(id);
             }
             StmtKind::Empty | StmtKind::Error => {}
         }

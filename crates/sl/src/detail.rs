@@ -3,8 +3,8 @@
 //! An expression is varying when anything it reads is varying. A local declared without
 //! `uniform`/`varying` starts out *optimistically uniform* and becomes varying when a varying
 //! value is assigned to it or when it is assigned under varying control flow (a varying `if`
-//! or loop condition, a loop left by a varying `break`/`continue`, anything after a varying
-//! `return`, and every `illuminance`/`illuminate`/`solar` body). Because one local's detail
+//! or loop condition, a loop left by a varying `break`/`continue`/`return`, the statements
+//! after a varying `return`, and every `illuminance`/`illuminate`/`solar` body). Because one local's detail
 //! feeds another's, the walk repeats until nothing changes (details only ever rise from
 //! uniform to varying, so this terminates). A final walk writes [`Expr::detail`] and
 //! [`VarInfo::inferred`] and reports assignments that break a *declared* uniform.
@@ -29,10 +29,21 @@ pub fn infer(prog: &mut Program, diags: &mut Vec<Diagnostic>) {
         .iter()
         .map(|f| f.params.iter().map(|p| p.output).collect())
         .collect();
+    let uniform_params: Vec<Vec<bool>> = prog
+        .functions
+        .iter()
+        .map(|f| {
+            f.params
+                .iter()
+                .map(|p| p.detail == Some(Detail::Uniform))
+                .collect()
+        })
+        .collect();
     let ctx = Ctx {
         pinned: &pinned,
         reads: &reads,
         user_outputs: &outs,
+        uniform_params: &uniform_params,
     };
     for i in 0..prog.shaders.len() {
         let owner = Owner::Shader(ShaderId(i as u32));
@@ -64,6 +75,8 @@ struct Ctx<'a> {
     reads: &'a [bool],
     /// Per user function: which parameters are `output`.
     user_outputs: &'a [Vec<bool>],
+    /// Per user function: which parameters are declared `uniform`.
+    uniform_params: &'a [Vec<bool>],
 }
 
 /// Parameter defaults are evaluated once per shader instance: annotate them too.
@@ -81,6 +94,7 @@ fn annotate_defaults(
         done,
         reads: ctx.reads,
         user_outputs: ctx.user_outputs,
+        uniform_params: ctx.uniform_params,
         changed: false,
         report: None,
         varying_loops: HashSet::new(),
@@ -164,6 +178,7 @@ fn run(
         done,
         reads: ctx.reads,
         user_outputs: ctx.user_outputs,
+        uniform_params: ctx.uniform_params,
         changed: true,
         report: None,
         varying_loops: HashSet::new(),
@@ -171,20 +186,22 @@ fn run(
         diverged: false,
         fn_diverged: false,
     };
-    // Each round can only raise details, and there are finitely many; the bound is a guard.
+    // Each round that changes something raises at least one slot, loop or the body to
+    // varying, and nothing is ever lowered, so at most `slots + loops + 1` rounds change
+    // anything; the bound only guards against a bug looping forever.
     let mut rounds = 0;
-    while w.changed && rounds < 4 * vars.len() + 8 {
+    while w.changed && rounds <= vars.len() + w.loop_counter + 2 {
         w.changed = false;
         w.loop_counter = 0;
-        let start = w.fn_diverged;
-        w.block(body, start);
+        w.fn_diverged = false;
+        w.block(body, false);
         rounds += 1;
     }
     let mut report = Vec::new();
     w.report = Some(&mut report);
     w.loop_counter = 0;
-    let start = w.fn_diverged;
-    w.block(body, start);
+    w.fn_diverged = false;
+    w.block(body, false);
     let details = w.details.clone();
     diags.extend(report);
     details
@@ -199,6 +216,8 @@ struct Walker<'a, 'r> {
     reads: &'a [bool],
     /// Per user function, which parameters are `output`.
     user_outputs: &'a [Vec<bool>],
+    /// Per user function, which parameters are declared `uniform`.
+    uniform_params: &'a [Vec<bool>],
     changed: bool,
     /// `Some` on the final walk: where to report declared-uniform violations.
     report: Option<&'r mut Vec<Diagnostic>>,
@@ -208,7 +227,8 @@ struct Walker<'a, 'r> {
     loop_counter: usize,
     /// A `break`/`continue` under varying control was seen in the current loop body.
     diverged: bool,
-    /// A `return` under varying control was seen: the whole body is varying control.
+    /// A `return` under varying control was seen earlier in this walk: the statements after
+    /// it are varying control.
     fn_diverged: bool,
 }
 
@@ -321,9 +341,11 @@ impl Walker<'_, '_> {
                 if let Some(v) = v {
                     self.expr(v, vc);
                 }
-                if vc && !self.fn_diverged {
+                // Points that returned stop running: everything after this statement (and, in
+                // a loop, every later iteration) runs under a varying mask.
+                if vc {
                     self.fn_diverged = true;
-                    self.changed = true;
+                    self.diverged = true;
                 }
             }
             StmtKind::Illuminance(il) => {
@@ -458,9 +480,29 @@ impl Walker<'_, '_> {
             None => Detail::Varying,
         };
         // Inputs decide the call's detail; output arguments receive it.
+        let uniform_params: Vec<bool> = match &call.callee {
+            Some(Callee::User(id)) => self
+                .uniform_params
+                .get(id.0 as usize)
+                .cloned()
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        };
         let mut out_targets = Vec::new();
         for (i, a) in call.args.iter_mut().enumerate() {
             let ad = self.expr(a, vc);
+            if ad == Detail::Varying && uniform_params.get(i).copied().unwrap_or(false) {
+                if let Some(rep) = self.report.as_deref_mut() {
+                    rep.push(Diagnostic::error(
+                        a.span,
+                        format!(
+                            "argument {} of '{}' must be uniform (the parameter is declared uniform), found a varying value",
+                            i + 1,
+                            call.name
+                        ),
+                    ));
+                }
+            }
             if outputs.get(i).copied().unwrap_or(false) {
                 out_targets.push(i);
             } else {

@@ -27,6 +27,7 @@ pub mod builtins;
 pub mod checker;
 mod detail;
 pub mod diagnostic;
+mod error;
 pub mod lexer;
 pub mod parser;
 pub mod preprocess;
@@ -34,6 +35,7 @@ pub mod span;
 pub mod types;
 
 pub use diagnostic::{Diagnostic, Severity};
+pub use error::SlError;
 pub use preprocess::PpOptions;
 pub use span::{FileId, Loc, SourceMap, Span};
 
@@ -63,6 +65,28 @@ impl Compiled {
             .map(|d| format!("{}\n", d.render(&self.sources)))
             .collect()
     }
+
+    /// The checked program, or [`SlError::Source`] when there were errors. Warnings are
+    /// dropped; read [`Compiled::diagnostics`] first to show them.
+    pub fn into_program(self) -> Result<ast::Program, SlError> {
+        if !self.has_errors() {
+            return Ok(self.program);
+        }
+        let errors = self
+            .diagnostics
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .count();
+        Err(SlError::Source {
+            file: self
+                .sources
+                .files
+                .first()
+                .map_or_else(String::new, |f| f.path.display().to_string()),
+            errors,
+            rendered: self.render_diagnostics(),
+        })
+    }
 }
 
 /// Compiles source text; `name` is the file name used in diagnostics and the directory
@@ -73,9 +97,12 @@ pub fn compile_str(name: &str, text: &str, opts: &PpOptions) -> Compiled {
     compile_registered(sources, id, opts)
 }
 
-/// Reads and compiles a file. An unreadable file is reported as a diagnostic, not a panic.
+/// Reads and compiles a file (bytes that are not UTF-8 read as U+FFFD). An unreadable file is
+/// reported as a diagnostic, not a panic.
 pub fn compile_file(path: &Path, opts: &PpOptions) -> Compiled {
-    match std::fs::read_to_string(path) {
+    // Lossy: old shaders carry Latin-1 bytes in comments (author names, ©), which must not
+    // stop compilation; such bytes can only matter inside string literals.
+    match std::fs::read(path).map(|b| String::from_utf8_lossy(&b).into_owned()) {
         Ok(text) => {
             let mut sources = SourceMap::new();
             let id = sources.add(path, text);

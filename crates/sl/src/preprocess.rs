@@ -27,7 +27,7 @@ const MAX_INCLUDE_DEPTH: usize = 40;
 const MAX_EXPANSION_DEPTH: usize = 200;
 /// Limit on tokens one macro expansion may produce, against exponential macro bombs
 /// (`#define A B B`, `#define B C C`, …).
-const MAX_EXPANSION_TOKENS: usize = 1 << 20;
+const MAX_EXPANSION_TOKENS: usize = 1 << 18;
 
 /// Preprocessor settings (what `slc -I dir -D NAME=value` sets).
 #[derive(Debug, Clone, Default)]
@@ -325,7 +325,8 @@ impl Pp<'_> {
         }
         candidates.extend(self.opts.include_dirs.iter().map(|d| d.join(&name)));
         for path in candidates {
-            if let Ok(text) = std::fs::read_to_string(&path) {
+            if let Ok(text) = std::fs::read(&path).map(|b| String::from_utf8_lossy(&b).into_owned())
+            {
                 let id = self.map.add(path, text);
                 self.run_file(id, depth + 1);
                 return;

@@ -161,6 +161,19 @@ fn every_chapter_listing_compiles() {
     assert!(failures.is_empty(), "{failures}");
 }
 
+mod common;
+
+#[test]
+fn checked_listings_keep_the_ast_promises() {
+    let Some(text) = reference_text() else { return };
+    let listings = extract_listings(&text);
+    for &n in listings.keys() {
+        let out = compile_listing(&listings, n, true);
+        let bad = common::invariant_violations(&out.program);
+        assert!(bad.is_empty(), "Listing 9.{n}: {bad:#?}");
+    }
+}
+
 #[test]
 fn the_errata_are_needed_where_they_say() {
     let Some(text) = reference_text() else { return };
@@ -231,4 +244,52 @@ fn shinymetal_resolves_macros_functions_and_globals() {
     assert_eq!(p.function(id).name, "MaterialShinyMetal");
     assert_eq!(value.ty.base, BaseType::Color);
     assert_eq!(value.detail, Detail::Varying);
+}
+
+#[test]
+fn light_listings_have_their_forms_and_uniform_setup() {
+    let Some(text) = reference_text() else { return };
+    let listings = extract_listings(&text);
+    // 9.15 distantlight: solar (axis, angle); 9.16 pointlight: illuminate (from);
+    // 9.17 spotlight: illuminate (from, axis, angle) with uniform set-up outside it.
+    let first_stmt_forms = |n: u32| {
+        let out = compile_listing(&listings, n, true);
+        assert!(!out.has_errors(), "{}", out.render_diagnostics());
+        let sh = &out.program.shaders[0];
+        let form = sh
+            .body
+            .stmts
+            .iter()
+            .find_map(|s| match &s.kind {
+                StmtKind::Solar(so) => Some(("solar", so.cone.is_some())),
+                StmtKind::Illuminate(il) => Some(("illuminate", il.cone.is_some())),
+                _ => None,
+            })
+            .expect("a lighting construct");
+        (sh.kind, form, out)
+    };
+    let (k, form, _) = first_stmt_forms(15);
+    assert_eq!((k, form), (ShaderKind::Light, ("solar", true)));
+    let (_, form, _) = first_stmt_forms(16);
+    assert_eq!(form, ("illuminate", false));
+    let (_, form, out) = first_stmt_forms(17);
+    assert_eq!(form, ("illuminate", true));
+    let v = |n: &str| {
+        out.program.shaders[0]
+            .vars
+            .iter()
+            .find(|v| v.name == n)
+            .unwrap()
+            .inferred
+    };
+    assert_eq!(
+        ["A", "cosoutside", "cosinside", "cosangle", "atten"].map(v),
+        [
+            Detail::Uniform,
+            Detail::Uniform,
+            Detail::Uniform,
+            Detail::Varying,
+            Detail::Varying
+        ]
+    );
 }

@@ -5,129 +5,13 @@ use illume_sl::ast::*;
 use illume_sl::types::{BaseType, Detail, Type};
 use illume_sl::{compile_str, PpOptions};
 
+mod common;
+use common::all_exprs;
+
 fn compile(src: &str) -> Program {
     let out = compile_str("t.sl", src, &PpOptions::default());
     assert!(!out.has_errors(), "{}", out.render_diagnostics());
     out.program
-}
-
-/// Every expression of the program, depth first.
-fn all_exprs(p: &Program) -> Vec<&Expr> {
-    let mut out = Vec::new();
-    for s in &p.shaders {
-        for q in &s.params {
-            if let Some(d) = &q.default {
-                expr(d, &mut out);
-            }
-        }
-        block(&s.body, &mut out);
-    }
-    for f in &p.functions {
-        block(&f.body, &mut out);
-    }
-    out
-}
-
-fn block<'a>(b: &'a Block, out: &mut Vec<&'a Expr>) {
-    for s in &b.stmts {
-        stmt(s, out);
-    }
-}
-
-fn stmt<'a>(s: &'a Stmt, out: &mut Vec<&'a Expr>) {
-    match &s.kind {
-        StmtKind::Decl(d) => d
-            .vars
-            .iter()
-            .filter_map(|v| v.init.as_ref())
-            .for_each(|e| expr(e, out)),
-        StmtKind::Expr(e) => expr(e, out),
-        StmtKind::Block(b) => block(b, out),
-        StmtKind::If {
-            cond,
-            then,
-            otherwise,
-        } => {
-            expr(cond, out);
-            stmt(then, out);
-            if let Some(o) = otherwise {
-                stmt(o, out);
-            }
-        }
-        StmtKind::While { cond, body } => {
-            expr(cond, out);
-            stmt(body, out);
-        }
-        StmtKind::For {
-            init,
-            cond,
-            step,
-            body,
-        } => {
-            for e in [init, cond, step].into_iter().flatten() {
-                expr(e, out);
-            }
-            stmt(body, out);
-        }
-        StmtKind::Return(Some(e)) => expr(e, out),
-        StmtKind::Illuminance(i) => {
-            expr(&i.position, out);
-            stmt(&i.body, out);
-        }
-        StmtKind::Illuminate(i) => {
-            expr(&i.position, out);
-            stmt(&i.body, out);
-        }
-        StmtKind::Solar(s) => stmt(&s.body, out),
-        _ => {}
-    }
-}
-
-fn expr<'a>(e: &'a Expr, out: &mut Vec<&'a Expr>) {
-    out.push(e);
-    match &e.kind {
-        ExprKind::Tuple(v) | ExprKind::ArrayInit(v) => v.iter().for_each(|x| expr(x, out)),
-        ExprKind::Cast { space, expr: x, .. } => {
-            if let Some(s) = space {
-                expr(s, out);
-            }
-            expr(x, out);
-        }
-        ExprKind::Promote(x) | ExprKind::Unary { expr: x, .. } => expr(x, out),
-        ExprKind::Binary { lhs, rhs, .. } => {
-            expr(lhs, out);
-            expr(rhs, out);
-        }
-        ExprKind::Ternary {
-            cond,
-            then,
-            otherwise,
-        } => {
-            expr(cond, out);
-            expr(then, out);
-            expr(otherwise, out);
-        }
-        ExprKind::Assign { target, value, .. } => {
-            if let Some(i) = &target.index {
-                expr(i, out);
-            }
-            expr(value, out);
-        }
-        ExprKind::Index { array, index } => {
-            expr(array, out);
-            expr(index, out);
-        }
-        ExprKind::Call(c) => c.args.iter().for_each(|x| expr(x, out)),
-        ExprKind::Texture(t) => {
-            expr(&t.map, out);
-            t.coords.iter().for_each(|x| expr(x, out));
-            t.params.iter().for_each(|p| {
-                expr(&p.name, out);
-                expr(&p.value, out);
-            });
-        }
-        _ => {}
-    }
 }
 
 /// The calls named `name`, in order.
@@ -519,4 +403,115 @@ fn user_functions_shadow_builtins_of_the_same_name() {
     );
     let (_, c) = calls(&p, "diffuse")[0];
     assert_eq!(c.callee, Some(Callee::User(FuncId(0))));
+}
+
+#[test]
+fn transform_keeps_the_geometric_type_of_its_argument() {
+    let p = compile(
+        "surface s() { point a = transform(\"world\", P); normal b = transform(\"world\", N); vector c = transform(\"object\", \"world\", I); }",
+    );
+    let rets: Vec<Type> = calls(&p, "transform").iter().map(|(e, _)| e.ty).collect();
+    assert_eq!(rets, vec![Type::POINT, Type::NORMAL, Type::VECTOR]);
+    assert!(
+        !all_exprs(&p)
+            .iter()
+            .any(|e| matches!(e.kind, ExprKind::Cast { .. })),
+        "no conversion was needed"
+    );
+}
+
+#[test]
+fn inference_reaches_a_fixpoint_through_long_backward_chains() {
+    // a0 = a1; a1 = a2; …; a29 = s: each walk makes one more link varying.
+    let mut body = String::new();
+    for k in 0..30 {
+        body.push_str(&format!("float a{k} = 0; "));
+    }
+    for k in 0..29 {
+        body.push_str(&format!("a{k} = a{}; ", k + 1));
+    }
+    body.push_str(
+        "a29 = s; float untouched = a0 * 0; uniform float kept = 1; Ci = a0 + untouched + kept;",
+    );
+    let p = compile(&format!("surface s() {{ {body} }}"));
+    for k in 0..30 {
+        assert_eq!(
+            var(&p, S0, &format!("a{k}")).inferred,
+            Detail::Varying,
+            "a{k}"
+        );
+    }
+    assert_eq!(
+        var(&p, S0, "untouched").inferred,
+        Detail::Varying,
+        "reads a varying value"
+    );
+    assert_eq!(var(&p, S0, "kept").inferred, Detail::Uniform);
+}
+
+#[test]
+fn open_array_parameters_take_any_length() {
+    let p = compile(
+        "float sum(float a[]) { float t = 0, i; for (i = 0; i < arraylength(a); i += 1) t += a[i]; return t; }
+         surface s() { float k[3] = {1, 2, 3}; float j[5] = {1, 2, 3, 4, 5}; Ci = sum(k) + sum(j); }",
+    );
+    let sums = calls(&p, "sum");
+    assert_eq!(sums.len(), 2);
+    assert!(sums
+        .iter()
+        .all(|(_, c)| c.callee == Some(Callee::User(FuncId(0)))));
+    let (_, al) = calls(&p, "arraylength")[0];
+    assert_eq!(
+        builtin(al).sig.params[0].ty.array,
+        Some(illume_sl::types::ArrayLen::Open)
+    );
+}
+
+#[test]
+fn a_varying_return_makes_only_later_statements_varying_control() {
+    let p = compile(
+        "float f(float x) {
+            uniform float before = 1;   /* fine: assigned before any point returned */
+            float early = 2;
+            if (x > 0) return before;
+            float late = 3;             /* assigned only for the points still running */
+            return early + late;
+        }",
+    );
+    let o = Owner::Function(FuncId(0));
+    assert_eq!(var(&p, o, "early").inferred, Detail::Uniform);
+    assert_eq!(var(&p, o, "late").inferred, Detail::Varying);
+    // A declared-uniform assignment after the varying return is an error.
+    let out = compile_str(
+        "r.sl",
+        "float f(float x) { uniform float u = 0; if (x > 0) return 1; u = 2; return u; }",
+        &PpOptions::default(),
+    );
+    assert_eq!(
+        out.render_diagnostics(),
+        "r.sl:1:62: error: cannot assign to uniform variable 'u' under varying control flow (a varying condition, loop or lighting construct)\n"
+    );
+}
+
+#[test]
+fn functions_nested_in_a_shader_reach_its_parameters_through_extern() {
+    let p = compile(
+        "surface s(float Kd = 0.5;) { color shade(normal n) { extern float Kd; return Kd * diffuse(n); } Ci = shade(normalize(N)); }",
+    );
+    let f = &p.functions[0];
+    assert_eq!(f.parent, Some(S0));
+    let StmtKind::Decl(d) = &f.body.stmts[0].kind else {
+        panic!()
+    };
+    assert_eq!(
+        d.vars[0].var,
+        Some(VarRef::Outer {
+            owner: S0,
+            var: VarId(0)
+        })
+    );
+    assert_eq!(
+        var(&p, S0, "Kd").kind,
+        VarKind::ShaderParam { output: false }
+    );
 }

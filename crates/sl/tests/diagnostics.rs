@@ -176,3 +176,37 @@ fn several_syntax_errors_are_reported_in_one_run() {
         ]
     );
 }
+
+#[test]
+fn into_program_turns_errors_into_the_crate_error() {
+    let err = compile_str(
+        "e.sl",
+        "surface s() { Ci = a; Oi = b; }",
+        &PpOptions::default(),
+    )
+    .into_program()
+    .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "2 error(s) compiling e.sl:\ne.sl:1:20: error: undeclared variable 'a'\ne.sl:1:28: error: undeclared variable 'b'\n"
+    );
+    let ok = compile_str("e.sl", "surface s() { Ci = Cs; }", &PpOptions::default()).into_program();
+    assert_eq!(ok.unwrap().shaders[0].name, "s");
+}
+
+#[test]
+fn varying_argument_for_a_uniform_parameter() {
+    assert_eq!(
+        one("float f(uniform float k) { return k; }\nsurface s() { Ci = f(1) + f(s); }"),
+        "e.sl:2:29: error: argument 1 of 'f' must be uniform (the parameter is declared uniform), found a varying value"
+    );
+}
+
+#[test]
+fn duplicate_function_definitions_but_overloads_are_fine() {
+    assert_eq!(
+        one("float f(float x) { return x; }\nfloat f(float y) { return y; }\n"),
+        "e.sl:2:7: error: function 'f' is already defined with these parameter types"
+    );
+    assert!(diags("float f(float x) { return x; }\ncolor f(color y) { return y; }\nsurface s() { Ci = f(Cs) * f(1); }\n").is_empty());
+}

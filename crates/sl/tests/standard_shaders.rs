@@ -103,3 +103,17 @@ fn uniform_work_is_found_in_a_feature_dense_shader() {
         "strings are uniform by default"
     );
 }
+
+mod common;
+
+#[test]
+fn checked_programs_keep_the_ast_promises() {
+    for entry in std::fs::read_dir(shader_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "sl") {
+            let out = compile_file(&path, &PpOptions::default());
+            let bad = common::invariant_violations(&out.program);
+            assert!(bad.is_empty(), "{}: {bad:#?}", path.display());
+        }
+    }
+}
