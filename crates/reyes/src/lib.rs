@@ -15,6 +15,7 @@ mod rayscene;
 mod refine;
 pub mod sampling;
 mod shading;
+mod slshaders;
 mod tile;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};

@@ -2,12 +2,13 @@
 //! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
 //! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
 use crate::rayscene::{self, RayScene};
+use crate::slshaders::SlShaders;
 use glam::{DMat4, DVec4, Vec3};
 use illume_geom::Grid;
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
-    displace, shade_surface, Displacement, ShadingEnv, ShadingGrid, SpecularModel, Surface,
-    TextureLookup, WarnOnce,
+    displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
+    Surface, TextureLookup, WarnOnce,
 };
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
@@ -49,6 +50,8 @@ pub(crate) struct FrameShading<'a> {
     seed: u32,
     pub warnings: WarnOnce,
     pub nonfinite: AtomicU64,
+    /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
+    sl: SlShaders,
 }
 
 fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
@@ -103,6 +106,7 @@ impl<'a> FrameShading<'a> {
         textures: Option<&'a dyn TextureLookup>,
     ) -> (FrameShading<'a>, Vec<Diagnostic>) {
         let mut diags = Vec::new();
+        let sl = SlShaders::bind(frame, &mut diags);
         let default_surface = Arc::new(Surface::default_surface());
         let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
         for prim in &frame.primitives {
@@ -110,7 +114,7 @@ impl<'a> FrameShading<'a> {
                 continue;
             };
             let key = Arc::as_ptr(shader) as usize;
-            if surfaces.contains_key(&key) {
+            if surfaces.contains_key(&key) || sl.has_surface(shader) {
                 continue;
             }
             let bound = if shader.name == "null" {
@@ -143,7 +147,7 @@ impl<'a> FrameShading<'a> {
                 continue;
             };
             let key = Arc::as_ptr(shader) as usize;
-            if displacements.contains_key(&key) {
+            if displacements.contains_key(&key) || sl.has_displacement(shader) {
                 continue;
             }
             let bound = match illume_shade::displacement(&shader.name, &shader.params) {
@@ -172,6 +176,9 @@ impl<'a> FrameShading<'a> {
             .enumerate()
             .map(|(index, l)| {
                 let s = &l.shader;
+                if sl.has_light(index) {
+                    return None;
+                }
                 match illume_shade::light(&s.name, &s.params, s.camera_from_shader) {
                     Ok((light, warnings)) => {
                         let mut light = light.with_raytraced_shadows(l.shadows);
@@ -220,6 +227,7 @@ impl<'a> FrameShading<'a> {
             seed: frame.number.unwrap_or(0) as u32,
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
+            sl,
         };
         if needs_rays {
             // Casters are displaced like the grids the camera sees, so a displaced surface
@@ -242,6 +250,23 @@ impl<'a> FrameShading<'a> {
             .flatten()
     }
 
+    /// Runs the primitive's displacement on `g` (a `.sl` of that name first, else the built-in)
+    /// with "shader" space the Displacement's; `false` when it has none.
+    fn run_displacement(&self, g: &mut ShadingGrid, attrs: &Attributes, env: &ShadingEnv) -> bool {
+        let mut denv = *env;
+        if let Some(s) = attrs.displacement.as_ref() {
+            denv.camera_from_shader = s.camera_from_shader;
+        }
+        if let Some(d) = self.sl.displacement(attrs) {
+            d.displace(g, &denv);
+        } else if let Some(d) = self.displacement_for(attrs) {
+            displace(&d, g, &denv);
+        } else {
+            return false;
+        }
+        true
+    }
+
     /// The grid's positions after its displacement shader, or `None` when the primitive has
     /// none (for the ray-traced shadow casters, which are diced apart from the hider's grids).
     pub fn displaced_positions(
@@ -251,14 +276,12 @@ impl<'a> FrameShading<'a> {
         flip: f32,
         prim: usize,
     ) -> Option<Vec<Vec3>> {
-        let d = self.displacement_for(attrs)?;
-        let mut g = self.shading_grid(grid, attrs, flip);
-        let mut env = self.env(attrs, prim);
-        if let Some(s) = attrs.displacement.as_ref() {
-            env.camera_from_shader = s.camera_from_shader;
+        if self.sl.displacement(attrs).is_none() && self.displacement_for(attrs).is_none() {
+            return None;
         }
-        displace(&d, &mut g, &env);
-        Some(g.p)
+        let mut g = self.shading_grid(grid, attrs, flip);
+        let env = self.env(attrs, prim);
+        self.run_displacement(&mut g, attrs, &env).then_some(g.p)
     }
 
     /// The grid as the shaders see it: normals oriented by `flip`, `Cs`/`Os` from primitive
@@ -334,7 +357,12 @@ impl<'a> FrameShading<'a> {
     /// "object" space is not yet carried with the primitive, so shaders see the surface's shader
     /// space there (the same space unless the Surface was declared under another transform).
     pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
-        let Some(surface) = self.surface_for(attrs) else {
+        let sl_surface = self.sl.surface(attrs);
+        let surface = match sl_surface {
+            Some(_) => Some(self.default_surface.clone()),
+            None => self.surface_for(attrs),
+        };
+        let Some(surface) = surface else {
             let os = grid
                 .os
                 .clone()
@@ -355,18 +383,29 @@ impl<'a> FrameShading<'a> {
             .iter()
             .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
             .collect();
-        let mut env = self.env(attrs, prim);
-        if let Some(d) = self.displacement_for(attrs) {
-            let surface_space = env.camera_from_shader;
-            if let Some(s) = attrs.displacement.as_ref() {
-                env.camera_from_shader = s.camera_from_shader;
-            }
-            displace(&d, &mut g, &env);
-            env.camera_from_shader = surface_space;
+        let env = self.env(attrs, prim);
+        self.run_displacement(&mut g, attrs, &env);
+        let mut cache = LightCache::run(&lights, &g, &env);
+        let builtin_count = cache.lights.len();
+        let mut sl_outputs = Vec::new();
+        for (proxy, samples, outputs) in self.sl.run_lights(&attrs.lights, &g, &env) {
+            cache.lights.push((proxy, samples));
+            sl_outputs.push(outputs);
         }
-        let stats = shade_surface(&surface, &mut g, &lights, &env);
-        if stats.nonfinite > 0 {
-            self.nonfinite.fetch_add(stats.nonfinite as u64, Relaxed);
+        let nonfinite = match sl_surface {
+            Some(s) => {
+                let mut view = illume_slvm::Lights::from_cache(&cache);
+                for (light, outputs) in view.lights[builtin_count..].iter_mut().zip(&sl_outputs) {
+                    if let illume_slvm::LightSource::Builtin(request) = light.source {
+                        light.source = illume_slvm::LightSource::Sl { outputs, request };
+                    }
+                }
+                s.shade_surface(&mut g, &view, &env).nonfinite
+            }
+            None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
+        };
+        if nonfinite > 0 {
+            self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
         }
         Shaded {
             p: g.p,

@@ -1,0 +1,23 @@
+//! The one place the executor calls the `illume-sl` front end: file → checked program.
+use illume_sl::ast::Program;
+use illume_sl::PpOptions;
+use std::path::Path;
+
+/// Compiles `path` to a checked program (`#include` searched next to the file); the error is
+/// every diagnostic rendered as `file:line:col: error: message`, one per line.
+pub fn compile_path(path: &Path) -> Result<Program, String> {
+    let compiled = illume_sl::compile_file(path, &PpOptions::default());
+    if compiled.has_errors() {
+        return Err(compiled.render_diagnostics().trim_end().to_string());
+    }
+    Ok(compiled.program)
+}
+
+/// Compiles source text (`name` is used in diagnostics), for tests and benchmarks.
+pub fn compile_source(name: &str, text: &str) -> Result<Program, String> {
+    let compiled = illume_sl::compile_str(name, text, &PpOptions::default());
+    if compiled.has_errors() {
+        return Err(compiled.render_diagnostics().trim_end().to_string());
+    }
+    Ok(compiled.program)
+}

@@ -1,0 +1,1 @@
+surface calculatenormal() { Ci = color (normalize (calculatenormal (P))); }

@@ -1,0 +1,1 @@
+surface derivatives() { Ci = color (Du (s * s), Dv (3 * t), area (P)); }

@@ -1,0 +1,1 @@
+surface noise() { float lattice = noise (floor (s * 4), floor (t * 3)); float c1 = cellnoise (s * 0.9); float c2 = cellnoise (s * 0.9 + 0.15); Ci = color (lattice, (c1 == c2) ? 1 : 0, (noise (P * 3.3) >= 0 && noise (P * 3.3) <= 1) ? 1 : 0); }
