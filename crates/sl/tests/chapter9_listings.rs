@@ -70,7 +70,9 @@ fn extract_listings(text: &str) -> BTreeMap<u32, String> {
                 code.push('\n');
             }
             match next_non_blank(end + 1) {
-                Some(nk) if lines[nk].trim_start().starts_with("```") => k = nk,
+                Some(nk) if lines[nk].trim_start().starts_with("```") && unfinished(&code) => {
+                    k = nk
+                }
                 _ => {
                     i = end + 1;
                     break;
@@ -80,6 +82,31 @@ fn extract_listings(text: &str) -> BTreeMap<u32, String> {
         out.insert(n, code);
     }
     out
+}
+
+/// Whether `code` stops mid-definition (an open brace or comment): only then does the next
+/// code block continue it (Listing 9.5 across its page break). A finished listing followed by
+/// a block is prose's own example (after Listing 9.14, the `solar (…) { statements; }` form).
+fn unfinished(code: &str) -> bool {
+    let (mut depth, mut comment) = (0i32, false);
+    let b = code.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        match (comment, b[i], b.get(i + 1)) {
+            (false, b'/', Some(b'*')) => (comment, i) = (true, i + 1),
+            (true, b'*', Some(b'/')) => (comment, i) = (false, i + 1),
+            (false, b'/', Some(b'/')) => {
+                while i < b.len() && b[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            (false, b'{', _) => depth += 1,
+            (false, b'}', _) => depth -= 1,
+            _ => {}
+        }
+        i += 1;
+    }
+    comment || depth > 0
 }
 
 /// The errata that correct the printed listings (see the module documentation).
