@@ -144,7 +144,7 @@ fn sign(x: f64) -> f64 {
 /// The queries the suite's environment answers, as a RIB would give them: `Format 64 48 1`,
 /// `FrameAspectRatio 1.3333`, `FrameBegin 7`, `CropWindow 0 1 0.25 0.75`, `Clipping 1 9`;
 /// `ShadingRate 0.5`, `Sides 2`, `Attribute "identifier" "name" "ball"`, `Attribute
-/// "displacementbound" "sphere" 0.25` (with its coordinate system, a float[2] here).
+/// "displacementbound" "sphere" 0.25`.
 const ASPECT: f32 = 4.0 / 3.0;
 const CLIPPING: (f32, f32) = (1.0, 9.0);
 
@@ -162,7 +162,7 @@ fn attributes() -> RenderInfo {
         .with_floats("ShadingRate", &[0.5])
         .with_floats("Sides", &[2.0])
         .with_string("identifier:name", "ball")
-        .with_floats("displacementbound:sphere", &[0.25, 0.0])
+        .with_floats("displacementbound:sphere", &[0.25])
 }
 
 /// A texture system that knows two maps by name only: `grid.tx` (a 3-channel 256×128 texture)
