@@ -496,7 +496,10 @@ fn option_attribute_and_depth_read_what_the_rib_set() {
         assert_eq!(img.len(), 64 * 48 * 4);
         for p in img.chunks(4) {
             for c in 0..3 {
-                assert!((p[c] - want[c]).abs() < 1e-6, "{surface}: {p:?} want {want:?}");
+                assert!(
+                    (p[c] - want[c]).abs() < 1e-6,
+                    "{surface}: {p:?} want {want:?}"
+                );
             }
         }
     }

@@ -109,7 +109,10 @@ fn textureinfo_describes_made_textures_and_shadow_maps() {
         lookup.textureinfo(s, "type"),
         Some(InfoValue::String("shadow".into()))
     );
-    assert_eq!(floats(lookup.textureinfo(s, "resolution")), vec![16.0, 16.0]);
+    assert_eq!(
+        floats(lookup.textureinfo(s, "resolution")),
+        vec![16.0, 16.0]
+    );
     assert_eq!(floats(lookup.textureinfo(s, "viewingmatrix")), wtc.to_vec());
     assert_eq!(floats(lookup.textureinfo(s, "projectionmatrix")).len(), 16);
     assert_eq!(lookup.textureinfo("no/such/map.tx", "resolution"), None);
