@@ -505,3 +505,46 @@ fn option_attribute_and_depth_read_what_the_rib_set() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn sl_lights_read_the_surface_and_the_surface_reads_the_displacement() {
+    // RI 3.2 §15.6 message passing through real RIB: the light's `surface("Kd")` sees the
+    // RIB-bound 0.25 (not the default 0.5) and the surface's `displacement("Km")` the RIB-bound
+    // 0.3. Expected per covered pixel, 1e-6: R = Km 0.3, G = found 1, B = Cl = Kd 0.25 + misses 0.
+    let dir = shader_dir("shadermsg");
+    std::fs::write(
+        dir.join("dmsg.sl"),
+        "displacement dmsg (float Km = 0.1) { N = N; }\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("smsg.sl"),
+        "surface smsg (float Kd = 0.5) {\n  float k = 0, lit = 0;\n  \
+         float found = displacement (\"Km\", k);\n  illuminance (P) { lit += comp (Cl, 0); }\n  \
+         Oi = 1; Ci = color (k, found, lit);\n}\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("lmsg.sl"),
+        "light lmsg () {\n  float kd = -1;\n  float miss = surface (\"nosuch\", kd);\n  \
+         float f = surface (\"Kd\", kd);\n  solar (vector (0, 0, 1), 0) { Cl = (kd + 10 * miss) * f; }\n}\n",
+    )
+    .unwrap();
+    let rib = format!(
+        "Option \"searchpath\" \"shader\" [\"{}\"]\nFormat 32 24 1\n\
+         Projection \"perspective\" \"fov\" [40]\nWorldBegin\n  LightSource \"lmsg\" 1\n  \
+         Translate 0 0 5\n  Displacement \"dmsg\" \"Km\" [0.3]\n  Surface \"smsg\" \"Kd\" [0.25]\n  \
+         Patch \"bilinear\" \"P\" [-9 -9 0  9 -9 0  -9 9 0  9 9 0]\nWorldEnd\n",
+        dir.display()
+    );
+    let (img, warnings) = render(&rib);
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    assert_eq!(img.len(), 32 * 24 * 4);
+    let want = [0.3, 1.0, 0.25];
+    for p in img.chunks(4) {
+        for c in 0..3 {
+            assert!((p[c] - want[c]).abs() < 1e-6, "{p:?} want {want:?}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

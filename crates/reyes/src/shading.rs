@@ -409,7 +409,13 @@ impl<'a> FrameShading<'a> {
         let mut cache = LightCache::run(&lights, &g, &env);
         let builtin_count = cache.lights.len();
         let mut sl_outputs = Vec::new();
-        for (proxy, samples, outputs) in self.sl.run_lights(&attrs.lights, &g, &env) {
+        // Message passing (RI 3.2 §15.6): SL lights read the SL surface's parameters and the
+        // SL surface reads the SL displacement's, as bound for this grid (before they run).
+        let to_lights = illume_slvm::Messages {
+            surface: sl_surface.map_or(Vec::new(), |s| s.parameter_values(&g, &env)),
+            ..Default::default()
+        };
+        for (proxy, samples, outputs) in self.sl.run_lights(&attrs.lights, &g, &env, &to_lights) {
             cache.lights.push((proxy, samples));
             sl_outputs.push(outputs);
         }
@@ -421,7 +427,15 @@ impl<'a> FrameShading<'a> {
                         light.source = illume_slvm::LightSource::Sl { outputs, request };
                     }
                 }
-                s.shade_surface(&mut g, &view, &env).nonfinite
+                let to_surface = illume_slvm::Messages {
+                    displacement: self
+                        .sl
+                        .displacement(attrs)
+                        .map_or(Vec::new(), |d| d.parameter_values(&g, &env)),
+                    ..Default::default()
+                };
+                s.shade_surface_with(&mut g, &view, &env, to_surface)
+                    .nonfinite
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
         };

@@ -532,9 +532,26 @@ impl Exec<'_> {
                     _ => Value::float(0.0),
                 }
             }
-            ("surface" | "displacement" | "atmosphere" | "incident" | "opposite", 2) => {
-                // Message passing to other shaders of the same primitive is not wired yet:
-                // "not found", the variable keeps its value.
+            ("surface" | "displacement" | "atmosphere", 2) => {
+                // The other shader's parameter values as the renderer handed them over (see
+                // `Messages`); an unknown name or a type mismatch is "not found".
+                let key = st(&a[0]);
+                let list = match name {
+                    "surface" => &self.messages.surface,
+                    "displacement" => &self.messages.displacement,
+                    _ => &self.messages.atmosphere,
+                };
+                let found = list.iter().find(|(k, _)| *k == key).map(|(_, v)| v.clone());
+                match found {
+                    Some(v) if same_kind(&v, &a[1]) => {
+                        self.write_back(&exprs[1], &v, mask);
+                        Value::float(1.0)
+                    }
+                    _ => Value::float(0.0),
+                }
+            }
+            ("incident" | "opposite", 2) => {
+                // Volume shaders do not run, so there is no volume to ask: "not found".
                 Value::float(0.0)
             }
             ("attribute" | "option" | "rendererinfo", 2) => {
