@@ -456,3 +456,95 @@ fn listing_9_19_shadowspot_shadows_like_the_builtin() {
     assert!(max_abs_diff(&lit, &builtin) > 0.2, "no visible shadow");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn option_attribute_and_depth_read_what_the_rib_set() {
+    // RI 3.2 §15.7 queries and §15.2 depth(), end to end: the values come from the RIB below
+    // (`Format 64 48 1`, `Clipping 1 9`, `ShadingRate 0.5`, `Sides 2`, identifier "plate"),
+    // and a plate at camera z = 5 covers the frame. Expected per covered pixel (1e-6, float
+    // rounding of a constant colour): R = 5 known queries / 10, G = (64+48+1)/1000 + (9-1)/10000,
+    // B = 0.5 + 2/10 + match/100; the depth pass: (5-1)/(9-1) = 0.5.
+    let dir = shader_dir("queries");
+    std::fs::write(
+        dir.join("queries.sl"),
+        "surface queries () {\n  float fmt[3] = { 0, 0, 0 }, cl[2] = { 0, 0 }, sr = 0, sides = 0;\n  \
+         string nm = \"\";\n  float ok = option (\"Format\", fmt) + option (\"Clipping\", cl)\n    \
+         + attribute (\"ShadingRate\", sr) + attribute (\"Sides\", sides)\n    \
+         + attribute (\"identifier:name\", nm);\n  Oi = 1;\n  \
+         Ci = color (ok / 10, (fmt[0] + fmt[1] + fmt[2]) / 1000 + (cl[1] - cl[0]) / 10000,\n    \
+         sr + sides / 10 + match (\"plate\", nm) / 100);\n}\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("depthpass.sl"),
+        "surface depthpass () { Oi = 1; Ci = depth (P); }\n",
+    )
+    .unwrap();
+    for (surface, want) in [
+        ("queries", [0.5, 0.113 + 0.0008, 0.71]),
+        ("depthpass", [0.5, 0.5, 0.5]),
+    ] {
+        let rib = format!(
+            "Option \"searchpath\" \"shader\" [\"{}\"]\nFormat 64 48 1\nClipping 1 9\n\
+             Projection \"perspective\" \"fov\" [40]\nWorldBegin\n  ShadingRate 0.5\n  Sides 2\n  \
+             Attribute \"identifier\" \"name\" \"plate\"\n  Translate 0 0 5\n  Surface \"{surface}\"\n  \
+             Patch \"bilinear\" \"P\" [-9 -9 0  9 -9 0  -9 9 0  9 9 0]\nWorldEnd\n",
+            dir.display()
+        );
+        let (img, warnings) = render(&rib);
+        assert!(warnings.is_empty(), "{surface}: {warnings:#?}");
+        assert_eq!(img.len(), 64 * 48 * 4);
+        for p in img.chunks(4) {
+            for c in 0..3 {
+                assert!(
+                    (p[c] - want[c]).abs() < 1e-6,
+                    "{surface}: {p:?} want {want:?}"
+                );
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn sl_lights_read_the_surface_and_the_surface_reads_the_displacement() {
+    // RI 3.2 §15.6 message passing through real RIB: the light's `surface("Kd")` sees the
+    // RIB-bound 0.25 (not the default 0.5) and the surface's `displacement("Km")` the RIB-bound
+    // 0.3. Expected per covered pixel, 1e-6: R = Km 0.3, G = found 1, B = Cl = Kd 0.25 + misses 0.
+    let dir = shader_dir("shadermsg");
+    std::fs::write(
+        dir.join("dmsg.sl"),
+        "displacement dmsg (float Km = 0.1) { N = N; }\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("smsg.sl"),
+        "surface smsg (float Kd = 0.5) {\n  float k = 0, lit = 0;\n  \
+         float found = displacement (\"Km\", k);\n  illuminance (P) { lit += comp (Cl, 0); }\n  \
+         Oi = 1; Ci = color (k, found, lit);\n}\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("lmsg.sl"),
+        "light lmsg () {\n  float kd = -1;\n  float miss = surface (\"nosuch\", kd);\n  \
+         float f = surface (\"Kd\", kd);\n  solar (vector (0, 0, 1), 0) { Cl = (kd + 10 * miss) * f; }\n}\n",
+    )
+    .unwrap();
+    let rib = format!(
+        "Option \"searchpath\" \"shader\" [\"{}\"]\nFormat 32 24 1\n\
+         Projection \"perspective\" \"fov\" [40]\nWorldBegin\n  LightSource \"lmsg\" 1\n  \
+         Translate 0 0 5\n  Displacement \"dmsg\" \"Km\" [0.3]\n  Surface \"smsg\" \"Kd\" [0.25]\n  \
+         Patch \"bilinear\" \"P\" [-9 -9 0  9 -9 0  -9 9 0  9 9 0]\nWorldEnd\n",
+        dir.display()
+    );
+    let (img, warnings) = render(&rib);
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    assert_eq!(img.len(), 32 * 24 * 4);
+    let want = [0.3, 1.0, 0.25];
+    for p in img.chunks(4) {
+        for c in 0..3 {
+            assert!((p[c] - want[c]).abs() < 1e-6, "{p:?} want {want:?}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -10,7 +10,10 @@
 //! Tolerance: 2e-5 absolute, f32 rounding of values of magnitude ≤ 20.
 use glam::{DMat4, DVec3, Vec3};
 use illume_rib::{Param, Value as RibValue};
-use illume_shade::{light, Light, LightCache, ShadingEnv, ShadingGrid};
+use illume_shade::{
+    light, InfoValue, Light, LightCache, RenderInfo, ShadingEnv, ShadingGrid, ShadowOptions,
+    TextureLookup, TextureOptions,
+};
 use illume_sl::types::ShaderKind;
 use illume_slvm::library::{pick_shader, ShaderLibrary};
 use illume_slvm::{Lights, SlInstance};
@@ -136,6 +139,93 @@ fn sign(x: f64) -> f64 {
     } else {
         0.0
     }
+}
+
+/// The queries the suite's environment answers, as a RIB would give them: `Format 64 48 1`,
+/// `FrameAspectRatio 1.3333`, `FrameBegin 7`, `CropWindow 0 1 0.25 0.75`, `Clipping 1 9`;
+/// `ShadingRate 0.5`, `Sides 2`, `Attribute "identifier" "name" "ball"`, `Attribute
+/// "displacementbound" "sphere" 0.25`.
+const ASPECT: f32 = 4.0 / 3.0;
+const CLIPPING: (f32, f32) = (1.0, 9.0);
+
+fn options() -> RenderInfo {
+    RenderInfo::new()
+        .with_floats("Format", &[64.0, 48.0, 1.0])
+        .with_floats("DeviceResolution", &[64.0, 48.0, 1.0])
+        .with_floats("FrameAspectRatio", &[ASPECT])
+        .with_floats("Frame", &[7.0])
+        .with_floats("CropWindow", &[0.0, 1.0, 0.25, 0.75])
+}
+
+fn attributes() -> RenderInfo {
+    RenderInfo::new()
+        .with_floats("ShadingRate", &[0.5])
+        .with_floats("Sides", &[2.0])
+        .with_string("identifier:name", "ball")
+        .with_floats("displacementbound:sphere", &[0.25])
+}
+
+/// A texture system that knows two maps by name only: `grid.tx` (a 3-channel 256×128 texture)
+/// and `spot.shd` (a shadow map whose viewing matrix translates by (5,6,7)).
+struct InfoOnly;
+
+impl TextureLookup for InfoOnly {
+    fn texture(
+        &self,
+        _: &str,
+        _: usize,
+        _: usize,
+        _: [[f32; 2]; 4],
+        _: &TextureOptions,
+    ) -> Option<[f32; 4]> {
+        None
+    }
+    fn environment(
+        &self,
+        _: &str,
+        _: usize,
+        _: usize,
+        _: [Vec3; 4],
+        _: &TextureOptions,
+    ) -> Option<[f32; 4]> {
+        None
+    }
+    fn shadow(&self, _: &str, _: [Vec3; 4], _: &ShadowOptions) -> Option<f32> {
+        None
+    }
+    fn textureinfo(&self, name: &str, data: &str) -> Option<InfoValue> {
+        Some(match (name, data) {
+            ("grid.tx", "resolution") => InfoValue::Floats(vec![256.0, 128.0]),
+            ("grid.tx", "channels") => InfoValue::Floats(vec![3.0]),
+            ("grid.tx", "type") => InfoValue::String("texture".into()),
+            ("spot.shd", "viewingmatrix") => InfoValue::Floats(vec![
+                1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 5.0, 6.0, 7.0, 1.0,
+            ]),
+            _ => return None,
+        })
+    }
+}
+
+/// What message passing reads in the suite: the surface's `Kd` 0.25, the displacement's `Km`
+/// 0.3 and the atmosphere's `fogcolor` (0.1, 0.2, 0.3).
+fn messages() -> illume_slvm::Messages {
+    illume_slvm::Messages {
+        surface: vec![("Kd".into(), illume_slvm::Value::float(0.25))],
+        displacement: vec![("Km".into(), illume_slvm::Value::float(0.3))],
+        atmosphere: vec![(
+            "fogcolor".into(),
+            illume_slvm::Value::triple(Vec3::new(0.1, 0.2, 0.3)),
+        )],
+    }
+}
+
+/// `Major.minor.patch` of the crate as the digits `rendererinfo("version")` returns.
+fn version_code() -> f64 {
+    let v: Vec<f64> = env!("CARGO_PKG_VERSION")
+        .split('.')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    v[0] * 100.0 + v[1] * 10.0 + v[2]
 }
 
 /// The expected `Ci` of conformance shader `name` at `q`.
@@ -265,6 +355,28 @@ fn expected(name: &str, q: Pt) -> Option<DVec3> {
         // __nonspecular 0 and 1: (0 + 1) + (1 + 1).
         "lightsource_message" => splat(3.0),
         "globals" => DVec3::new(s + 10.0 * t, q.du, 0.5) + DVec3::new(0.5, 0.25, 1.0),
+        // Five known queries; the two bad ones (unknown name, wrong type) leave `missing`/`nm`.
+        "attribute_query" => DVec3::new(4.0, 0.5 + 2.0 + 0.25, 1.0 + 7.0),
+        "option_query" => DVec3::new(
+            5.0,
+            64.0 + 0.48 + 1.0 + f64::from(ASPECT),
+            7.0 + 1.0 + 0.25 + 0.064,
+        ),
+        "rendererinfo" => DVec3::new(
+            3.0,
+            1.0 + 2.0 * b(env!("CARGO_PKG_VERSION") == "0.1.0"),
+            version_code(),
+        ),
+        // (z − near)/(far − near), near 1, far 9.
+        "depth" => {
+            let (near, far) = (f64::from(CLIPPING.0), f64::from(CLIPPING.1));
+            let d = |z: f64| (z - near) / (far - near);
+            DVec3::new(d(p.z), d(p.z + s), d(1.0))
+        }
+        // Three found; the three misses (unknown name, float into a color, the surface has
+        // no Km) leave their variables.
+        "shader_messages" => DVec3::new(3.0, 0.25 + 0.3, 0.1 + 0.3),
+        "textureinfo" => DVec3::new(4.0, 256.0 + 0.128 + 3.0, 1.0 + 5.0),
         _ => return None,
     })
 }
@@ -290,6 +402,11 @@ fn every_conformance_shader_gives_its_expected_value() {
     let refs: Vec<&Light> = lights.iter().collect();
     let mut env = ShadingEnv::new();
     env.camera_from_world = DMat4::from_translation(DVec3::new(1.0, 2.0, 3.0));
+    let (opts, attrs) = (options(), attributes());
+    env.options = Some(&opts);
+    env.attributes = Some(&attrs);
+    env.clipping = CLIPPING;
+    env.textures = Some(&InfoOnly);
     let library = ShaderLibrary::new();
     let mut failures = Vec::new();
     for path in &files {
@@ -308,7 +425,7 @@ fn every_conformance_shader_gives_its_expected_value() {
         let mut g = grid();
         let cache = LightCache::run(&refs, &g, &env);
         let view = Lights::from_cache(&cache);
-        inst.shade_surface(&mut g, &view, &env);
+        inst.shade_surface_with(&mut g, &view, &env, messages());
         for i in 0..g.len() {
             let q = Pt {
                 s: g.s[i] as f64,

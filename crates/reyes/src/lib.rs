@@ -13,6 +13,7 @@ mod lens;
 mod motion;
 mod rayscene;
 mod refine;
+mod renderinfo;
 pub mod sampling;
 mod shading;
 mod slshaders;

@@ -48,6 +48,12 @@ pub(crate) struct FrameShading<'a> {
     rays: Option<RayScene>,
     /// The frame number, for per-point random numbers.
     seed: u32,
+    /// The camera's clipping planes, for `depth()`.
+    clipping: (f32, f32),
+    /// What SL `option()` reads, and `attribute()` per distinct attribute set (keyed by the
+    /// address of the frame's shared `Attributes`).
+    options: illume_shade::RenderInfo,
+    attribute_info: HashMap<usize, illume_shade::RenderInfo>,
     pub warnings: WarnOnce,
     pub nonfinite: AtomicU64,
     /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
@@ -225,6 +231,16 @@ impl<'a> FrameShading<'a> {
             textures,
             rays: None,
             seed: frame.number.unwrap_or(0) as u32,
+            clipping: (frame.camera.near as f32, frame.camera.far as f32),
+            options: crate::renderinfo::options(frame),
+            attribute_info: {
+                let mut m = HashMap::new();
+                for p in &frame.primitives {
+                    m.entry(Arc::as_ptr(&p.attributes) as usize)
+                        .or_insert_with(|| crate::renderinfo::attributes(&p.attributes));
+                }
+                m
+            },
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
             sl,
@@ -337,6 +353,11 @@ impl<'a> FrameShading<'a> {
             env.ray_offset = r.offset(prim);
         }
         env.seed = self.seed;
+        env.clipping = self.clipping;
+        env.options = Some(&self.options);
+        env.attributes = self
+            .attribute_info
+            .get(&(attrs as *const Attributes as usize));
         env
     }
 
@@ -388,7 +409,13 @@ impl<'a> FrameShading<'a> {
         let mut cache = LightCache::run(&lights, &g, &env);
         let builtin_count = cache.lights.len();
         let mut sl_outputs = Vec::new();
-        for (proxy, samples, outputs) in self.sl.run_lights(&attrs.lights, &g, &env) {
+        // Message passing (RI 3.2 §15.6): SL lights read the SL surface's parameters and the
+        // SL surface reads the SL displacement's, as bound for this grid (before they run).
+        let to_lights = illume_slvm::Messages {
+            surface: sl_surface.map_or(Vec::new(), |s| s.parameter_values(&g, &env)),
+            ..Default::default()
+        };
+        for (proxy, samples, outputs) in self.sl.run_lights(&attrs.lights, &g, &env, &to_lights) {
             cache.lights.push((proxy, samples));
             sl_outputs.push(outputs);
         }
@@ -400,7 +427,15 @@ impl<'a> FrameShading<'a> {
                         light.source = illume_slvm::LightSource::Sl { outputs, request };
                     }
                 }
-                s.shade_surface(&mut g, &view, &env).nonfinite
+                let to_surface = illume_slvm::Messages {
+                    displacement: self
+                        .sl
+                        .displacement(attrs)
+                        .map_or(Vec::new(), |d| d.parameter_values(&g, &env)),
+                    ..Default::default()
+                };
+                s.shade_surface_with(&mut g, &view, &env, to_surface)
+                    .nonfinite
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
         };

@@ -174,6 +174,7 @@ impl SlShaders {
         indices: &[usize],
         grid: &ShadingGrid,
         env: &ShadingEnv,
+        messages: &illume_slvm::Messages,
     ) -> Vec<(&'s Light, LightSamples, LightParams)> {
         indices
             .iter()
@@ -181,7 +182,7 @@ impl SlShaders {
             .map(|l| {
                 let mut lenv = *env;
                 lenv.camera_from_shader = l.camera_from_shader;
-                let (samples, outputs) = l.shader.run_light(grid, &lenv);
+                let (samples, outputs) = l.shader.run_light_with(grid, &lenv, messages.clone());
                 (&l.proxy, samples, outputs)
             })
             .collect()

@@ -1,6 +1,7 @@
 //! What shaders need from the rest of the renderer besides the grid: spaces, options, textures,
 //! and a place to put warnings.
 use crate::occlusion::Occlusion;
+use crate::renderstate::RenderInfo;
 use crate::texturelookup::TextureLookup;
 use glam::{DMat4, Vec3};
 use std::collections::{HashMap, HashSet};
@@ -95,6 +96,12 @@ pub struct ShadingEnv<'a> {
     pub ray_offset: f32,
     /// Mixed into every per-point random number (the frame number), so frames differ.
     pub seed: u32,
+    /// The camera's `Clipping` planes (camera-space z), for `depth()`.
+    pub clipping: (f32, f32),
+    /// The frame's options and the primitive's attributes as `option()`/`attribute()` see
+    /// them; `None`: every query answers "unknown".
+    pub options: Option<&'a RenderInfo>,
+    pub attributes: Option<&'a RenderInfo>,
 }
 
 impl<'a> ShadingEnv<'a> {
@@ -115,6 +122,9 @@ impl<'a> ShadingEnv<'a> {
             occlusion: None,
             ray_offset: 0.0,
             seed: 0,
+            clipping: (f32::EPSILON, f32::INFINITY),
+            options: None,
+            attributes: None,
         }
     }
 

@@ -88,4 +88,11 @@ pub trait TextureLookup: Send + Sync {
     /// `shadow(name, Ptest, …)`: the fraction of the footprint in shadow, 0 (lit) to 1, for the
     /// four footprint corners given in *world* space.
     fn shadow(&self, name: &str, p_world: [Vec3; 4], options: &ShadowOptions) -> Option<f32>;
+
+    /// `textureinfo(name, dataname, …)`: `"resolution"`, `"channels"`, `"type"`,
+    /// `"viewingmatrix"`, `"projectionmatrix"` of a map; `None` when the map or the datum is
+    /// unknown (the default: lookups that cannot describe their maps).
+    fn textureinfo(&self, _name: &str, _dataname: &str) -> Option<crate::InfoValue> {
+        None
+    }
 }

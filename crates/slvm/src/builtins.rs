@@ -399,9 +399,17 @@ impl Exec<'_> {
                 self.transform(kind, a)?
             }
             ("depth", 1) => {
-                // Camera-space z mapped by the clipping range is not known to shaders here:
-                // depth is the camera-space z (documented deviation).
-                Value::Float(tr(&a[0]).map(|p| p.z))
+                // RI 3.2 §15.2: the camera-space z mapped so the near plane is 0, the far 1. An
+                // infinite far plane (the default) gives 0 everywhere, as (z−near)/∞ would.
+                let (near, far) = self.env.clipping;
+                let range = f64::from(far) - f64::from(near);
+                Value::Float(tr(&a[0]).map(move |p| {
+                    if range.is_finite() && range > 0.0 {
+                        ((f64::from(p.z) - f64::from(near)) / range) as f32
+                    } else {
+                        0.0
+                    }
+                }))
             }
             ("calculatenormal", 1) => {
                 let p = tr(&a[0]);
@@ -524,15 +532,87 @@ impl Exec<'_> {
                     _ => Value::float(0.0),
                 }
             }
-            ("surface" | "displacement" | "atmosphere" | "incident" | "opposite", 2) => {
-                // Message passing to other shaders of the same primitive is not wired yet:
-                // "not found", the variable keeps its value.
+            ("surface" | "displacement" | "atmosphere", 2) => {
+                // The other shader's parameter values as the renderer handed them over (see
+                // `Messages`); an unknown name or a type mismatch is "not found".
+                let key = st(&a[0]);
+                let list = match name {
+                    "surface" => &self.messages.surface,
+                    "displacement" => &self.messages.displacement,
+                    _ => &self.messages.atmosphere,
+                };
+                let found = list.iter().find(|(k, _)| *k == key).map(|(_, v)| v.clone());
+                match found {
+                    Some(v) if same_kind(&v, &a[1]) => {
+                        self.write_back(&exprs[1], &v, mask);
+                        Value::float(1.0)
+                    }
+                    _ => Value::float(0.0),
+                }
+            }
+            ("incident" | "opposite", 2) => {
+                // Volume shaders do not run, so there is no volume to ask: "not found".
                 Value::float(0.0)
             }
-            ("attribute" | "option" | "rendererinfo" | "textureinfo", _) => Value::float(0.0),
+            ("attribute" | "option" | "rendererinfo", 2) => {
+                let key = st(&a[0]);
+                let found = match name {
+                    "attribute" => self.env.attributes.and_then(|t| t.get(&key)).cloned(),
+                    "option" => self.env.options.and_then(|t| t.get(&key)).cloned(),
+                    _ => illume_shade::rendererinfo(&key),
+                };
+                self.answer_query(found, &a[1], &exprs[1], mask)
+            }
+            ("textureinfo", 3) => {
+                let (map, key) = (st(&a[0]), st(&a[1]));
+                let found = self.env.textures.and_then(|t| t.textureinfo(&map, &key));
+                self.answer_query(found, &a[2], &exprs[2], mask)
+            }
             ("trace", _) => Value::triple(Vec3::ZERO),
             _ => return None,
         })
+    }
+
+    /// Writes a queried value into the output argument when it fits the variable's type
+    /// (float, triple, matrix, string, float array of the same length): 1, else 0 and the
+    /// variable keeps its value (RI 3.2 §15.7).
+    fn answer_query(
+        &mut self,
+        found: Option<illume_shade::InfoValue>,
+        current: &Value,
+        target: &Expr,
+        mask: &Mask,
+    ) -> Value {
+        use illume_shade::InfoValue;
+        let v = match (found, current) {
+            (Some(InfoValue::String(s)), Value::String(_)) => Some(Value::string(&s)),
+            (Some(InfoValue::Floats(f)), Value::Float(_)) if f.len() == 1 => {
+                Some(Value::float(f[0]))
+            }
+            (Some(InfoValue::Floats(f)), Value::Triple(_)) if f.len() == 3 => {
+                Some(Value::triple(Vec3::new(f[0], f[1], f[2])))
+            }
+            (Some(InfoValue::Floats(f)), Value::Matrix(_)) if f.len() == 16 => {
+                let mut m = [0.0f64; 16];
+                for (k, x) in f.iter().enumerate() {
+                    m[k] = f64::from(*x);
+                }
+                Some(Value::Matrix(Slot::Uniform(geometric::matrix_from_rows(m))))
+            }
+            (Some(InfoValue::Floats(f)), Value::Array(e))
+                if e.len() == f.len() && e.iter().all(|x| matches!(x, Value::Float(_))) =>
+            {
+                Some(Value::Array(f.iter().map(|&x| Value::float(x)).collect()))
+            }
+            _ => None,
+        };
+        match v {
+            Some(v) => {
+                self.write_back(target, &v, mask);
+                Value::float(1.0)
+            }
+            None => Value::float(0.0),
+        }
     }
 
     /// `filterstep`'s width: the change of `x` over one grid step in u plus one in v.

@@ -65,6 +65,15 @@ pub(crate) struct Emission {
     pub directional: bool,
 }
 
+/// The other shaders' parameter values that `surface()`, `displacement()` and `atmosphere()`
+/// read (RI 3.2 §15.6 message passing), by name. Empty lists answer "not found".
+#[derive(Clone, Debug, Default)]
+pub struct Messages {
+    pub surface: Vec<(String, Value)>,
+    pub displacement: Vec<(String, Value)>,
+    pub atmosphere: Vec<(String, Value)>,
+}
+
 /// The executor over one grid.
 pub struct Exec<'a> {
     pub(crate) prog: &'a Program,
@@ -81,6 +90,8 @@ pub struct Exec<'a> {
     pub(crate) random_site: u32,
     /// Errors met while running (unknown built-ins, bad spaces), reported once by the caller.
     pub(crate) problems: Vec<String>,
+    /// What message passing to the primitive's other shaders can read.
+    pub(crate) messages: Messages,
 }
 
 impl<'a> Exec<'a> {
@@ -125,6 +136,7 @@ impl<'a> Exec<'a> {
             emission: Emission::default(),
             random_site: 0,
             problems: Vec::new(),
+            messages: Messages::default(),
         }
     }
 

@@ -7,7 +7,7 @@
 //! and are ignored. `point`/`vector`/`normal` values are given in the request's "shader" space
 //! and converted to camera space; a user primitive variable of the same name (one or one-per-
 //! point values) overrides both the default and the RIB value (RI Spec §5).
-use crate::exec::{apply, CompiledShader, Exec};
+use crate::exec::{apply, CompiledShader, Exec, Messages};
 use crate::lights::Lights;
 use crate::value::{Slot, Value};
 use glam::{DMat4, Vec3};
@@ -120,6 +120,21 @@ impl SlInstance {
         values
     }
 
+    /// This shader's parameter values for `grid` before it runs (defaults, RIB values,
+    /// primitive variables), by name: what another shader's `surface()`/`displacement()`
+    /// message passing reads.
+    pub fn parameter_values(&self, grid: &ShadingGrid, env: &ShadingEnv) -> Vec<(String, Value)> {
+        let lights = Lights::default();
+        let mut exec = Exec::new(&self.shader.program, grid, env, &lights);
+        let values = self.params(&mut exec, grid);
+        let def = self.shader.program.shader(self.shader.id);
+        def.params
+            .iter()
+            .map(|p| p.name.clone())
+            .zip(values)
+            .collect()
+    }
+
     fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
         for p in &exec.problems {
             env.warn(&format!("shader `{name}`: {p}"));
@@ -134,9 +149,21 @@ impl SlInstance {
         lights: &Lights,
         env: &ShadingEnv,
     ) -> SlStats {
+        self.shade_surface_with(grid, lights, env, Messages::default())
+    }
+
+    /// [`SlInstance::shade_surface`] with what `displacement()`/`atmosphere()` read.
+    pub fn shade_surface_with(
+        &self,
+        grid: &mut ShadingGrid,
+        lights: &Lights,
+        env: &ShadingEnv,
+        messages: Messages,
+    ) -> SlStats {
         let (ci, oi) = {
             let g: &ShadingGrid = grid;
             let mut exec = Exec::new(&self.shader.program, g, env, lights);
+            exec.messages = messages;
             let params = self.params(&mut exec, g);
             exec.run_shader(self.shader.id, params);
             Self::report(&exec, env, self.name());
@@ -193,9 +220,20 @@ impl SlInstance {
         grid: &ShadingGrid,
         env: &ShadingEnv,
     ) -> (LightSamples, Vec<(String, Value)>) {
+        self.run_light_with(grid, env, Messages::default())
+    }
+
+    /// [`SlInstance::run_light`] with what `surface()` (and the others) read.
+    pub fn run_light_with(
+        &self,
+        grid: &ShadingGrid,
+        env: &ShadingEnv,
+        messages: Messages,
+    ) -> (LightSamples, Vec<(String, Value)>) {
         let lights = Lights::default();
         let n = grid.len();
         let mut exec = Exec::new(&self.shader.program, grid, env, &lights);
+        exec.messages = messages;
         // In a light shader P is the light's own position (its shader-space origin for a
         // non-area light), Ps the surface point.
         let origin = env

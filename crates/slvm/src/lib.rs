@@ -19,7 +19,7 @@ pub mod spline;
 mod texture;
 mod value;
 
-pub use exec::{zero_of, CompiledShader, Exec};
+pub use exec::{zero_of, CompiledShader, Exec, Messages};
 pub use instance::{string_value, SlInstance, SlStats};
 pub use lights::{in_cone, LightSource, LightView, Lights};
 pub use value::{zip2, zip3, Mask, Slot, Value};

@@ -1,11 +1,11 @@
 //! The texture cache as the shaders see it: [`illume_shade::TextureLookup`] over
 //! [`TextureCache`]. Shading defines what it needs; this file translates the Shading Language
 //! options into the cache's, so neither crate knows the other's internals.
-use crate::cache::TextureCache;
+use crate::cache::{TextureCache, TextureKind};
 use crate::filter::FilterKind;
 use crate::lookup::LookupOptions;
 use glam::Vec3;
-use illume_shade::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
+use illume_shade::{InfoValue, ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
 
 fn lookup_options(o: &TextureOptions) -> LookupOptions {
     LookupOptions {
@@ -79,5 +79,34 @@ impl TextureLookup for TextureCache {
 
     fn shadow(&self, name: &str, p_world: [Vec3; 4], options: &ShadowOptions) -> Option<f32> {
         TextureCache::shadow(self, name, p_world, &shadow_options(options)).ok()
+    }
+
+    /// `"resolution"` (float[2]), `"channels"`, `"type"` (`"texture"`, `"environment"`,
+    /// `"shadow"`), and for shadow maps `"viewingmatrix"` (world → light camera) and
+    /// `"projectionmatrix"` (world → the map's NDC, what the map stores), 16 floats in RIB
+    /// (row-vector) order.
+    fn textureinfo(&self, name: &str, dataname: &str) -> Option<InfoValue> {
+        let info = self.info(name).ok()?;
+        let matrix = |m: Option<glam::DMat4>| {
+            m.map(|m| InfoValue::Floats(m.to_cols_array().iter().map(|&x| x as f32).collect()))
+        };
+        match dataname {
+            "resolution" => Some(InfoValue::Floats(vec![
+                info.width as f32,
+                info.height as f32,
+            ])),
+            "channels" => Some(InfoValue::Floats(vec![info.channels.len() as f32])),
+            "type" => Some(InfoValue::String(
+                match info.kind {
+                    TextureKind::Plain => "texture",
+                    TextureKind::LatLong | TextureKind::Cube => "environment",
+                    TextureKind::Shadow => "shadow",
+                }
+                .to_string(),
+            )),
+            "viewingmatrix" => matrix(self.file(name).ok()?.world_to_camera),
+            "projectionmatrix" => matrix(self.file(name).ok()?.world_to_ndc),
+            _ => None,
+        }
     }
 }

@@ -52,3 +52,69 @@ fn shader_lookup_reads_the_made_texture_and_misses_are_none() {
         .is_none());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn textureinfo_describes_made_textures_and_shadow_maps() {
+    use illume_imageio::DepthMatrices;
+    use illume_shade::InfoValue;
+    let dir = std::env::temp_dir().join(format!("illume-texinfo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A 3-channel 32×8 texture made by `make_texture`.
+    let tex = dir.join("flat.tx");
+    let image = Image {
+        width: 32,
+        height: 8,
+        channels: vec!["r".into(), "g".into(), "b".into()],
+        data: vec![0.5; 32 * 8 * 3],
+    };
+    make_texture(&image, &tex, &MakeOptions::default()).unwrap();
+    // A 16×16 shadow map whose light camera is world translated by (5,6,7) (RIB row-vector
+    // order: the translation in elements 12..14) and whose screen matrix is a projection.
+    let mut wtc = [0.0f32; 16];
+    for i in 0..4 {
+        wtc[i * 5] = 1.0;
+    }
+    wtc[12..15].copy_from_slice(&[5.0, 6.0, 7.0]);
+    let m = DepthMatrices {
+        world_to_screen: [
+            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, -1.0, 0.0,
+        ],
+        world_to_camera: wtc,
+    };
+    let depth = Image {
+        width: 16,
+        height: 16,
+        channels: vec!["z".into()],
+        data: vec![3.0; 256],
+    };
+    let sm = dir.join("spot.sm");
+    illume_texture::make_shadow(&depth, &m, &sm, &MakeOptions::default()).unwrap();
+
+    let cache = TextureCache::new(1 << 20);
+    let lookup: &dyn TextureLookup = &cache;
+    let (t, s) = (tex.to_str().unwrap(), sm.to_str().unwrap());
+    let floats = |v: Option<InfoValue>| match v {
+        Some(InfoValue::Floats(f)) => f,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(floats(lookup.textureinfo(t, "resolution")), vec![32.0, 8.0]);
+    assert_eq!(floats(lookup.textureinfo(t, "channels")), vec![3.0]);
+    assert_eq!(
+        lookup.textureinfo(t, "type"),
+        Some(InfoValue::String("texture".into()))
+    );
+    assert_eq!(lookup.textureinfo(t, "viewingmatrix"), None);
+    assert_eq!(lookup.textureinfo(t, "nosuch"), None);
+    assert_eq!(
+        lookup.textureinfo(s, "type"),
+        Some(InfoValue::String("shadow".into()))
+    );
+    assert_eq!(
+        floats(lookup.textureinfo(s, "resolution")),
+        vec![16.0, 16.0]
+    );
+    assert_eq!(floats(lookup.textureinfo(s, "viewingmatrix")), wtc.to_vec());
+    assert_eq!(floats(lookup.textureinfo(s, "projectionmatrix")).len(), 16);
+    assert_eq!(lookup.textureinfo("no/such/map.tx", "resolution"), None);
+    let _ = std::fs::remove_dir_all(&dir);
+}
