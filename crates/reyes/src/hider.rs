@@ -712,7 +712,7 @@ fn grid_motion(
     }
 }
 
-/// Records one sample hit of a moving micropolygon: colour and opacity interpolated at the
+/// Records one sample hit of a micropolygon (still or moving): colour and opacity interpolated at the
 /// barycentric weights `w` of grid vertices `idx` (or the micropolygon's first vertex when
 /// shading is flat); `ccw`: the triangle's raster winding at the sample (CSG entering test).
 #[allow(clippy::too_many_arguments)]
@@ -1073,28 +1073,19 @@ fn sample_triangle(
                 if z < near || z > far || z >= opaque_z[s] {
                     continue;
                 }
-                let (c, o) = if g.smooth {
-                    let (a, b, cc) = (w0 as f32, w1 as f32, w2 as f32);
-                    (
-                        g.ci[idx[0]] * a + g.ci[idx[1]] * b + g.ci[idx[2]] * cc,
-                        g.oi[idx[0]] * a + g.oi[idx[1]] * b + g.oi[idx[2]] * cc,
-                    )
-                } else {
-                    (g.ci[first], g.oi[first])
-                };
                 counters.samples.fetch_add(1, Relaxed);
-                lists[s].push(VisiblePoint {
+                deposit(
+                    g,
+                    idx,
+                    [w0, w1, w2],
+                    first,
                     z,
                     order,
-                    c,
-                    o,
-                    matte: g.matte,
-                    entering: ccw == g.ccw_enters,
-                });
-                // A solid's surface may yet be carved away, so it hides nothing behind it.
-                if o.min_element() >= 1.0 && g.solid == NO_SOLID {
-                    opaque_z[s] = z;
-                }
+                    ccw,
+                    s,
+                    lists,
+                    opaque_z,
+                );
             }
         }
     }
