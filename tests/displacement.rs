@@ -251,29 +251,13 @@ fn a_world_bound_on_a_scaled_object_is_not_scaled() {
 }
 
 /// The shared corpus (`../shared/corpus` or `$ILLUME_CORPUS`).
-fn corpus_dir() -> Option<std::path::PathBuf> {
-    if let Ok(p) = std::env::var("ILLUME_CORPUS") {
-        return Some(p.into());
-    }
-    let mut dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    loop {
-        let c = dir.join("shared/corpus");
-        if c.is_dir() {
-            return Some(c);
-        }
-        if !dir.pop() {
-            return None;
-        }
-    }
-}
-
 /// Aqsis's disp_test.rib names "brickbump", an SL shader we do not have: one warning naming
 /// it, and the image is exactly the scene without the Displacement line. `render` exits 0
 /// (the README's rule: warnings only), writing its file into its working directory (a temp
 /// dir, never the corpus).
 #[test]
 fn aqsis_disp_test_warns_once_and_renders_undisplaced() {
-    let Some(corpus) = corpus_dir() else {
+    let Some(corpus) = support::corpus_dir() else {
         eprintln!("SKIPPED: no RIB corpus (../shared/corpus or $ILLUME_CORPUS)");
         return;
     };

@@ -181,22 +181,6 @@ fn depth_of_a_tilted_plane_matches_its_analytic_depth() {
 }
 
 /// The shared RIB corpus, found by walking up from this crate (or `ILLUME_CORPUS`).
-fn corpus_dir() -> Option<std::path::PathBuf> {
-    if let Ok(p) = std::env::var("ILLUME_CORPUS") {
-        return Some(p.into());
-    }
-    let mut dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    loop {
-        let c = dir.join("shared/corpus");
-        if c.is_dir() {
-            return Some(c);
-        }
-        if !dir.pop() {
-            return None;
-        }
-    }
-}
-
 fn rib_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
     let Ok(rd) = std::fs::read_dir(dir) else {
         return;
@@ -213,7 +197,7 @@ fn rib_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
 
 #[test]
 fn shared_corpus_renders_without_panics() {
-    let Some(dir) = corpus_dir() else {
+    let Some(dir) = support::corpus_dir() else {
         eprintln!("SKIPPED: shared/corpus not found (set ILLUME_CORPUS)");
         return;
     };
