@@ -26,20 +26,26 @@ fn committed_textures_are_what_the_generator_writes() {
             "{}",
             s.name
         );
-        // 8-bit files hold round(255 v) (no dither); float files the values themselves.
+        // 8-bit files hold round(255 v) (no dither; in f64, as the RI's Quantize is computed:
+        // 0.7f32 is 178.49999… code values, so 178); float files hold the values themselves.
         let expect = |v: f32| {
             if s.quantize.one == 0 {
                 v
             } else {
-                (v.clamp(0.0, 1.0) * 255.0).round() / 255.0
+                (255.0 * f64::from(v.clamp(0.0, 1.0))).round() as f32 / 255.0
             }
         };
-        let differ = got
+        let differ: Vec<(usize, f32, f32)> = got
             .data
             .iter()
             .zip(&want.data)
-            .filter(|(g, w)| (**g - expect(**w)).abs() > 1e-6)
-            .count();
+            .enumerate()
+            .filter(|(_, (g, w))| (**g - expect(**w)).abs() > 1e-6)
+            .map(|(i, (g, w))| (i, *g, *w))
+            .collect();
+        let first = differ.first();
+        let differ = differ.len();
+        eprintln!("{}: first difference {first:?}", s.name);
         assert_eq!(
             differ, 0,
             "{}: {differ} values differ from the generator",
