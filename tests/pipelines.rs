@@ -14,6 +14,8 @@ mod forms;
 mod geometry;
 #[path = "pipelines/latlong.rs"]
 mod latlong;
+#[path = "pipelines/texture.rs"]
+mod texture;
 
 use forms::scratch;
 use illume_reyes::Rendered;
