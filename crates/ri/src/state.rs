@@ -251,7 +251,7 @@ impl Ri {
         }
         let Spanned { span, value } = req;
         let name = value.name().to_string();
-        if is_option(&value) && self.in_world() && !matches!(value, Request::Option { .. }) {
+        if value.is_option() && self.in_world() && !matches!(value, Request::Option { .. }) {
             self.diagnostics.error(
                 &span,
                 &name,
@@ -259,7 +259,7 @@ impl Ri {
             );
             return;
         }
-        if self.motion.is_some() && is_transform(&value) {
+        if self.motion.is_some() && value.is_transform() {
             self.motion_transform(value, &span);
             return;
         }
@@ -308,8 +308,8 @@ impl Ri {
                 args,
                 bound,
             } => self.procedural(&kind, &args, &bound, &span),
-            ref r if is_option(r) => self.option(value, &span),
-            ref r if is_geometry(r) => self.geometry(&value, &span),
+            ref r if r.is_option() => self.option(value, &span),
+            ref r if r.is_geometry() => self.geometry(&value, &span),
             other => self.attribute_or_transform(other, &span),
         }
     }
@@ -1803,76 +1803,6 @@ impl Ri {
             ),
         }
     }
-}
-
-fn is_option(r: &Request) -> bool {
-    use Request::*;
-    matches!(
-        r,
-        Format { .. }
-            | FrameAspectRatio(_)
-            | ScreenWindow { .. }
-            | CropWindow { .. }
-            | Projection { .. }
-            | Clipping { .. }
-            | ClippingPlane { .. }
-            | DepthOfField { .. }
-            | Shutter { .. }
-            | PixelVariance(_)
-            | PixelSamples { .. }
-            | PixelFilter { .. }
-            | Exposure { .. }
-            | Imager { .. }
-            | Quantize { .. }
-            | Display { .. }
-            | Hider { .. }
-            | ColorSamples { .. }
-            | RelativeDetail(_)
-            | Option { .. }
-    )
-}
-
-/// The transformation requests a motion block may hold.
-fn is_transform(r: &Request) -> bool {
-    use Request::*;
-    matches!(
-        r,
-        Identity
-            | Transform(_)
-            | ConcatTransform(_)
-            | Perspective(_)
-            | Translate(_)
-            | Rotate { .. }
-            | Scale(_)
-            | Skew(_)
-            | CoordSysTransform(_)
-    )
-}
-
-fn is_geometry(r: &Request) -> bool {
-    use Request::*;
-    matches!(
-        r,
-        Polygon { .. }
-            | GeneralPolygon { .. }
-            | PointsPolygons { .. }
-            | PointsGeneralPolygons { .. }
-            | Patch { .. }
-            | PatchMesh { .. }
-            | NuPatch { .. }
-            | Sphere { .. }
-            | Cone { .. }
-            | Cylinder { .. }
-            | Hyperboloid { .. }
-            | Paraboloid { .. }
-            | Disk { .. }
-            | Torus { .. }
-            | Points { .. }
-            | Curves { .. }
-            | SubdivisionMesh { .. }
-            | Blobby { .. }
-            | Geometry { .. }
-    )
 }
 
 /// The named bases of RI Spec 3.2 §5.2.1 (row order) with their default steps ignored here;
