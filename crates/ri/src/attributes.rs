@@ -27,11 +27,6 @@ pub struct Light {
     pub samples: u32,
 }
 
-/// Bezier, the spec's default `Basis` (RI Spec 3.2 §5.2.1), in RIB row order.
-pub const BEZIER: [f32; 16] = [
-    -1.0, 3.0, -3.0, 1.0, 3.0, -6.0, 3.0, 0.0, -3.0, 3.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
-];
-
 #[derive(Clone, Debug, PartialEq)]
 pub struct Attributes {
     pub color: [f32; 3],
@@ -83,6 +78,8 @@ pub struct Attributes {
 
 impl Default for Attributes {
     fn default() -> Self {
+        // Bezier is the spec's default `Basis` (RI Spec 3.2 §5.2.1).
+        let (bezier, _) = illume_geom::basis::basis_matrix("bezier").expect("a predefined basis");
         Attributes {
             color: [1.0; 3],
             opacity: [1.0; 3],
@@ -92,7 +89,7 @@ impl Default for Attributes {
             sides: 2,
             orientation_rh: false,
             texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-            basis: (BEZIER, 3, BEZIER, 3),
+            basis: (bezier, 3, bezier, 3),
             surface: None,
             displacement: None,
             atmosphere: None,

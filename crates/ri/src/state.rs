@@ -1805,44 +1805,13 @@ impl Ri {
     }
 }
 
-/// The named bases of RI Spec 3.2 §5.2.1 (row order) with their default steps ignored here;
-/// `Basis` carries explicit steps.
+/// A `Basis` argument as a matrix: one of the named bases of RI Spec 3.2 §5.2.1 (their
+/// default steps are ignored: `Basis` carries explicit steps) or the explicit 16 numbers.
 fn basis_matrix(b: &BasisSpec) -> Option<[f32; 16]> {
-    let s = 1.0 / 6.0;
-    Some(match b {
-        BasisSpec::Matrix(m) => *m,
-        BasisSpec::Named(n) => match n.as_str() {
-            "bezier" => crate::attributes::BEZIER,
-            "b-spline" | "bspline" => [
-                -s,
-                3.0 * s,
-                -3.0 * s,
-                s,
-                3.0 * s,
-                -6.0 * s,
-                3.0 * s,
-                0.0,
-                -3.0 * s,
-                0.0,
-                3.0 * s,
-                0.0,
-                s,
-                4.0 * s,
-                s,
-                0.0,
-            ],
-            "catmull-rom" | "catmullrom" => [
-                -0.5, 1.5, -1.5, 0.5, 1.0, -2.5, 2.0, -0.5, -0.5, 0.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0,
-            ],
-            "hermite" => [
-                2.0, 1.0, -2.0, 1.0, -3.0, -2.0, 3.0, -1.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
-            ],
-            "power" => [
-                1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
-            ],
-            _ => return None,
-        },
-    })
+    match b {
+        BasisSpec::Matrix(m) => Some(*m),
+        BasisSpec::Named(n) => illume_geom::basis::basis_matrix(n).map(|(m, _)| m),
+    }
 }
 
 /// The `illume-rib` parser, with its diagnostics carried over.
