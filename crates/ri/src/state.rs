@@ -34,7 +34,7 @@ pub type TextureMaker = Box<dyn FnMut(&Request, &Options) -> Result<(), String>>
 const MAX_NESTING: usize = 64;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum BlockKind {
+pub(crate) enum BlockKind {
     Frame,
     World,
     Attribute,
@@ -44,7 +44,7 @@ enum BlockKind {
 }
 
 impl BlockKind {
-    fn begin(self) -> &'static str {
+    pub(crate) fn begin(self) -> &'static str {
         match self {
             BlockKind::Frame => "FrameBegin",
             BlockKind::World => "WorldBegin",
@@ -56,18 +56,18 @@ impl BlockKind {
     }
 }
 
-struct Block {
-    kind: BlockKind,
-    span: Span,
-    attributes: Arc<Attributes>,
-    ctm: DMat4,
-    ctm_motion: Option<MovingTransform>,
-    options: Option<Options>,
+pub(crate) struct Block {
+    pub(crate) kind: BlockKind,
+    pub(crate) span: Span,
+    pub(crate) attributes: Arc<Attributes>,
+    pub(crate) ctm: DMat4,
+    pub(crate) ctm_motion: Option<MovingTransform>,
+    pub(crate) options: Option<Options>,
 }
 
 /// An open `MotionBegin` block: its times, the transform it started from, and what each of
 /// its requests produced (one transformation or one primitive list per time).
-struct OpenMotion {
+pub(crate) struct OpenMotion {
     times: Vec<f64>,
     base: (DMat4, Option<MovingTransform>),
     transforms: Vec<(DMat4, Option<MovingTransform>)>,
@@ -76,45 +76,45 @@ struct OpenMotion {
     first: Option<(Span, String)>,
 }
 
-enum Recording {
+pub(crate) enum Recording {
     Object(Handle),
     Archive(String),
 }
 
 /// The RenderMan Interface state.
 pub struct Ri {
-    options: Options,
-    attributes: Arc<Attributes>,
+    pub(crate) options: Options,
+    pub(crate) attributes: Arc<Attributes>,
     /// Camera from the current (object) space, f64.
-    ctm: DMat4,
+    pub(crate) ctm: DMat4,
     /// The current transformation's keys when it moves (`ctm` is the first key).
-    ctm_motion: Option<MovingTransform>,
-    camera_from_world: Option<DMat4>,
+    pub(crate) ctm_motion: Option<MovingTransform>,
+    pub(crate) camera_from_world: Option<DMat4>,
     /// The camera's keys when it moves (a motion block before `WorldBegin`).
-    camera_motion: Option<MovingTransform>,
-    motion: Option<OpenMotion>,
-    blocks: Vec<Block>,
-    declarations: Declarations,
-    coordinate_systems: HashMap<String, DMat4>,
-    lights: Vec<Light>,
-    primitives: Vec<FramePrimitive>,
+    pub(crate) camera_motion: Option<MovingTransform>,
+    pub(crate) motion: Option<OpenMotion>,
+    pub(crate) blocks: Vec<Block>,
+    pub(crate) declarations: Declarations,
+    pub(crate) coordinate_systems: HashMap<String, DMat4>,
+    pub(crate) lights: Vec<Light>,
+    pub(crate) primitives: Vec<FramePrimitive>,
     /// This world's CSG solids, and the node each open `SolidBegin` stands for (a solid
     /// nested in a primitive solid stands for that primitive: its surfaces join it).
-    solids: SolidTree,
-    open_solids: Vec<u32>,
-    frame_number: Option<i32>,
-    camera: Option<Camera>,
-    world_active: bool,
-    recording: Option<(Recording, Span, Vec<Spanned<Request>>)>,
-    objects: HashMap<Handle, Arc<Vec<Spanned<Request>>>>,
-    archives: HashMap<String, Arc<Vec<Spanned<Request>>>>,
-    frames: Vec<Frame>,
-    diagnostics: Diagnostics,
-    parser: Option<StreamParser>,
-    texture_maker: Option<TextureMaker>,
-    crop_override: Option<[f32; 4]>,
-    frame_range: Option<(i32, i32)>,
-    nesting: usize,
+    pub(crate) solids: SolidTree,
+    pub(crate) open_solids: Vec<u32>,
+    pub(crate) frame_number: Option<i32>,
+    pub(crate) camera: Option<Camera>,
+    pub(crate) world_active: bool,
+    pub(crate) recording: Option<(Recording, Span, Vec<Spanned<Request>>)>,
+    pub(crate) objects: HashMap<Handle, Arc<Vec<Spanned<Request>>>>,
+    pub(crate) archives: HashMap<String, Arc<Vec<Spanned<Request>>>>,
+    pub(crate) frames: Vec<Frame>,
+    pub(crate) diagnostics: Diagnostics,
+    pub(crate) parser: Option<StreamParser>,
+    pub(crate) texture_maker: Option<TextureMaker>,
+    pub(crate) crop_override: Option<[f32; 4]>,
+    pub(crate) frame_range: Option<(i32, i32)>,
+    pub(crate) nesting: usize,
 }
 
 impl Default for Ri {
@@ -314,7 +314,7 @@ impl Ri {
         }
     }
 
-    fn in_world(&self) -> bool {
+    pub(crate) fn in_world(&self) -> bool {
         self.camera.is_some()
     }
 
@@ -370,7 +370,7 @@ impl Ri {
         }
     }
 
-    fn push_block(&mut self, kind: BlockKind, span: &Span) {
+    pub(crate) fn push_block(&mut self, kind: BlockKind, span: &Span) {
         self.blocks.push(Block {
             kind,
             span: span.clone(),
@@ -381,7 +381,7 @@ impl Ri {
         });
     }
 
-    fn end_block(&mut self, kind: BlockKind, span: &Span, name: &str) {
+    pub(crate) fn end_block(&mut self, kind: BlockKind, span: &Span, name: &str) {
         let Some(pos) = self.blocks.iter().rposition(|b| b.kind == kind) else {
             let msg = format!("no matching {} is open (ignored)", kind.begin());
             self.diagnostics.error(span, name, msg);
@@ -400,7 +400,7 @@ impl Ri {
         self.pop_block();
     }
 
-    fn pop_block(&mut self) {
+    pub(crate) fn pop_block(&mut self) {
         let Some(b) = self.blocks.pop() else { return };
         match b.kind {
             BlockKind::Transform => (self.ctm, self.ctm_motion) = (b.ctm, b.ctm_motion),
@@ -426,62 +426,6 @@ impl Ri {
                 self.frame_number = None;
             }
         }
-    }
-
-    fn world_begin(&mut self, span: &Span) {
-        if self.in_world() {
-            self.diagnostics
-                .error(span, "WorldBegin", "already inside a world block (ignored)");
-            return;
-        }
-        self.push_block(BlockKind::World, span);
-        let mut options = self.options.clone();
-        if let Some(c) = self.crop_override {
-            options.crop = c;
-        }
-        self.camera = Some(Camera::new(&options, self.ctm));
-        self.camera_from_world = Some(self.ctm);
-        self.camera_motion = self.ctm_motion.clone();
-        self.coordinate_systems
-            .insert("world".to_string(), self.ctm);
-        self.world_active = match (self.frame_range, self.frame_number) {
-            (Some((a, b)), Some(n)) => (a..=b).contains(&n),
-            _ => true,
-        };
-        self.primitives.clear();
-    }
-
-    fn world_end(&mut self) {
-        let Some(camera) = self.camera.take() else {
-            return;
-        };
-        let mut options = self.options.clone();
-        if let Some(c) = self.crop_override {
-            options.crop = c;
-        }
-        let primitives = std::mem::take(&mut self.primitives);
-        let solids = std::mem::take(&mut self.solids);
-        self.open_solids.clear();
-        if self.world_active {
-            self.frames.push(Frame {
-                number: self.frame_number,
-                options,
-                camera,
-                lights: self.lights.clone(),
-                primitives,
-                solids,
-                coordinate_systems: self
-                    .coordinate_systems
-                    .iter()
-                    .map(|(k, v)| (k.clone(), *v))
-                    .collect(),
-            });
-        }
-        self.lights.clear();
-        self.camera_from_world = None;
-        self.camera_motion = None;
-        self.coordinate_systems.remove("world");
-        self.world_active = true;
     }
 
     // ---- options ---------------------------------------------------------------------
