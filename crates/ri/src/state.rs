@@ -1,18 +1,16 @@
 //! The RI state machine: one method per request family, a block stack that recovers from
 //! mismatched `Begin`/`End`, and frame hand-off at `WorldEnd`.
-use crate::attributes::{Attributes, Light, Shader};
+use crate::attributes::{Attributes, Light};
 use crate::camera::Camera;
 use crate::declarations::Declarations;
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::frame::{Frame, FramePrimitive};
 use crate::motion::{segment, MotionKeys, MovingTransform};
 use crate::options::Options;
-use crate::paramlist;
 use crate::solid::{SolidOp, SolidTree};
-use crate::transform;
 use glam::{DMat4, DVec3};
 use illume_geom::{BuildContext, GeomError};
-use illume_rib::{BasisSpec, Declaration, Handle, ParamList, Request, Span, Spanned};
+use illume_rib::{Declaration, Handle, Request, Span, Spanned};
 use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -318,7 +316,10 @@ impl Ri {
                 }
             }
             ref r if r.is_geometry() => self.geometry(&value, &span),
-            other => self.attribute_or_transform(other, &span),
+            ref r if r.is_transform() || matches!(r, CoordinateSystem(_)) => {
+                self.transform_request(value, &span)
+            }
+            other => self.attribute(other, &span),
         }
     }
 
@@ -439,379 +440,6 @@ impl Ri {
     // ---- options ---------------------------------------------------------------------
 
     // ---- attributes and transforms ----------------------------------------------------
-
-    fn attrs(&mut self) -> &mut Attributes {
-        Arc::make_mut(&mut self.attributes)
-    }
-
-    fn shader(&self, name: String, params: ParamList, span: &Span) -> Arc<Shader> {
-        Arc::new(Shader {
-            name,
-            params,
-            camera_from_shader: self.ctm,
-            span: span.clone(),
-        })
-    }
-
-    fn concat(&mut self, m: DMat4) {
-        self.ctm *= m;
-        if let Some(mm) = &self.ctm_motion {
-            self.ctm_motion = Some(mm.then(m));
-        }
-    }
-
-    /// The handedness of the current object space relative to (left-handed) camera space.
-    fn current_is_rh(&self) -> bool {
-        self.ctm.determinant() < 0.0
-    }
-
-    fn attribute_or_transform(&mut self, req: Request, span: &Span) {
-        let name = req.name().to_string();
-        use Request::*;
-        match req {
-            Color(c) | Opacity(c) if c.len() < 3 => self.diagnostics.error(
-                span,
-                &name,
-                format!("expected 3 color samples, found {}", c.len()),
-            ),
-            Color(c) => self.attrs().color = [c[0], c[1], c[2]],
-            Opacity(c) => self.attrs().opacity = [c[0], c[1], c[2]],
-            TextureCoordinates(tc) => self.attrs().texture_coordinates = tc,
-            ShadingRate(r) => {
-                if r > 0.0 {
-                    self.attrs().shading_rate = r;
-                } else {
-                    self.diagnostics.error(
-                        span,
-                        &name,
-                        format!("expected a positive rate, found {r}"),
-                    );
-                }
-            }
-            ShadingInterpolation(kind) => match kind.as_str() {
-                "smooth" => self.attrs().smooth_shading = true,
-                "constant" => self.attrs().smooth_shading = false,
-                other => self.diagnostics.error(
-                    span,
-                    &name,
-                    format!("expected \"constant\" or \"smooth\", found \"{other}\""),
-                ),
-            },
-            Matte(m) => self.attrs().matte = m,
-            Sides(s) => {
-                if s == 1 || s == 2 {
-                    self.attrs().sides = s;
-                } else {
-                    self.diagnostics
-                        .error(span, &name, format!("expected 1 or 2, found {s}"));
-                }
-            }
-            Orientation(o) => {
-                let rh = match o.as_str() {
-                    "lh" => false,
-                    "rh" => true,
-                    "outside" => self.current_is_rh(),
-                    "inside" => !self.current_is_rh(),
-                    other => {
-                        self.diagnostics.error(
-                            span,
-                            &name,
-                            format!("expected lh, rh, inside or outside, found \"{other}\""),
-                        );
-                        return;
-                    }
-                };
-                self.attrs().orientation_rh = rh;
-            }
-            ReverseOrientation => {
-                let a = self.attrs();
-                a.orientation_rh = !a.orientation_rh;
-            }
-            TrimCurve {
-                ncurves,
-                order,
-                knot,
-                min,
-                max,
-                n,
-                u,
-                v,
-                w,
-            } => {
-                let args = illume_geom::TrimCurveArgs {
-                    ncurves: &ncurves,
-                    order: &order,
-                    knot: &knot,
-                    min: &min,
-                    max: &max,
-                    n: &n,
-                    u: &u,
-                    v: &v,
-                    w: &w,
-                };
-                match illume_geom::TrimCurves::new(args) {
-                    Ok(t) => self.attrs().trim_curves = (!t.is_empty()).then(|| Arc::new(t)),
-                    Err(e) => self.diagnostics.error(span, &name, e),
-                }
-            }
-            Basis {
-                ubasis,
-                ustep,
-                vbasis,
-                vstep,
-            } => {
-                let (Some(u), Some(v)) = (basis_matrix(&ubasis), basis_matrix(&vbasis)) else {
-                    self.diagnostics.error(
-                        span,
-                        &name,
-                        "unknown basis, expected bezier, b-spline, catmull-rom, hermite, power or 16 numbers",
-                    );
-                    return;
-                };
-                if ustep < 1 || vstep < 1 {
-                    self.diagnostics.error(
-                        span,
-                        &name,
-                        format!("steps must be positive, found {ustep} {vstep}"),
-                    );
-                    return;
-                }
-                self.attrs().basis = (u, ustep, v, vstep);
-            }
-            Surface { name: n, params } => {
-                let s = self.shader(n, params, span);
-                self.attrs().surface = Some(s);
-            }
-            Displacement { name: n, params } => {
-                let s = self.shader(n, params, span);
-                self.attrs().displacement = Some(s);
-            }
-            Atmosphere { name: n, params } => {
-                let s = self.shader(n, params, span);
-                self.attrs().atmosphere = Some(s);
-            }
-            Interior { name: n, params } => {
-                let s = self.shader(n, params, span);
-                self.attrs().interior = Some(s);
-            }
-            Exterior { name: n, params } => {
-                let s = self.shader(n, params, span);
-                self.attrs().exterior = Some(s);
-            }
-            Deformation { .. } | GeometricRepresentation(_) => {
-                self.diagnostics
-                    .warn(span, &name, "not supported yet (ignored)")
-            }
-            LightSource {
-                name: n,
-                handle,
-                params,
-            } => self.light(n, handle, params, false, span),
-            AreaLightSource {
-                name: n,
-                handle,
-                params,
-            } => self.light(n, handle, params, true, span),
-            Illuminate { handle, on } => {
-                let Some(i) = self.lights.iter().position(|l| l.handle == handle) else {
-                    self.diagnostics
-                        .error(span, &name, format!("no light with handle {handle:?}"));
-                    return;
-                };
-                let a = self.attrs();
-                a.lights.retain(|&l| l != i);
-                if on {
-                    a.lights.push(i);
-                }
-            }
-            Attribute { name: n, params } => self.user_attribute(&n, &params, span),
-            Bound(_) => {}
-            Detail(b) => {
-                let ctm = self.ctm;
-                self.attrs().detail = Some((b, ctm));
-            }
-            DetailRange(r) => {
-                if r[0] <= r[1] && r[1] <= r[2] && r[2] <= r[3] {
-                    self.attrs().detail_range = Some(r);
-                } else {
-                    self.diagnostics.error(
-                        span,
-                        &name,
-                        "expected minvisible ≤ lowertransition ≤ uppertransition ≤ maxvisible",
-                    );
-                }
-            }
-            GeometricApproximation { kind, value } => {
-                if kind == "flatness" {
-                    self.attrs().flatness = Some(value);
-                } else {
-                    self.diagnostics.warn(
-                        span,
-                        &name,
-                        format!("\"{kind}\" not supported (ignored)"),
-                    );
-                }
-            }
-            Identity => {
-                self.ctm = self.camera_from_world.unwrap_or(DMat4::IDENTITY);
-                self.ctm_motion = self.camera_motion.clone();
-            }
-            Transform(m) => {
-                let m = transform::from_rib(&m);
-                self.ctm = self.camera_from_world.unwrap_or(DMat4::IDENTITY) * m;
-                self.ctm_motion = self.camera_motion.as_ref().map(|c| c.then(m));
-            }
-            ConcatTransform(m) => self.concat(transform::from_rib(&m)),
-            Perspective(fov) => match transform::perspective(fov) {
-                Some(m) => self.concat(m),
-                None => self.diagnostics.error(
-                    span,
-                    &name,
-                    format!("fov must lie in (0, 180), found {fov}"),
-                ),
-            },
-            Translate(t) => self.concat(DMat4::from_translation(DVec3::from(t.map(f64::from)))),
-            Rotate { angle, axis } => match transform::rotate(angle, axis) {
-                Some(m) => self.concat(m),
-                None => self.diagnostics.error(span, &name, "the axis is zero"),
-            },
-            Scale(s) => self.concat(DMat4::from_scale(DVec3::from(s.map(f64::from)))),
-            Skew(a) => match transform::skew(&a) {
-                Ok(m) => self.concat(m),
-                Err(e) => self.diagnostics.error(span, &name, e),
-            },
-            CoordinateSystem(n) => {
-                self.coordinate_systems.insert(n, self.ctm);
-            }
-            CoordSysTransform(n) => match self.named_space(&n) {
-                Some(m) => (self.ctm, self.ctm_motion) = (m, None),
-                None => self.diagnostics.error(
-                    span,
-                    &name,
-                    format!("unknown coordinate system \"{n}\""),
-                ),
-            },
-            other => {
-                self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
-            }
-        }
-    }
-
-    fn named_space(&self, name: &str) -> Option<DMat4> {
-        match name {
-            "camera" => Some(DMat4::IDENTITY),
-            "current" | "object" => Some(self.ctm),
-            "world" => self.camera_from_world.or(Some(DMat4::IDENTITY)),
-            n => self.coordinate_systems.get(n).copied(),
-        }
-    }
-
-    fn light(&mut self, name: String, handle: Handle, params: ParamList, area: bool, span: &Span) {
-        let shader = (*self.shader(name, params, span)).clone();
-        let light = Light {
-            handle: handle.clone(),
-            shader,
-            area,
-            shadows: self.attributes.light_shadows,
-            samples: self.attributes.light_samples,
-        };
-        let index = match self.lights.iter().position(|l| l.handle == handle) {
-            Some(i) => {
-                self.lights[i] = light;
-                i
-            }
-            None => {
-                self.lights.push(light);
-                self.lights.len() - 1
-            }
-        };
-        let a = self.attrs();
-        a.lights.retain(|&l| l != index);
-        a.lights.push(index);
-        if area {
-            a.area_light = Some(index);
-        }
-    }
-
-    fn user_attribute(&mut self, name: &str, params: &ParamList, span: &Span) {
-        for p in paramlist::names(params)
-            .map(str::to_string)
-            .collect::<Vec<_>>()
-        {
-            let f = paramlist::float(params, &p);
-            match (name, p.as_str()) {
-                ("identifier", "name") => {
-                    self.attrs().identifier = paramlist::string(params, "name")
-                }
-                ("displacementbound", "sphere") if f.is_some() => {
-                    // The bound is given in "coordinatesystem" (object by default): scale it
-                    // by the largest axis stretch of that space into camera space.
-                    let space = paramlist::string(params, "coordinatesystem")
-                        .unwrap_or_else(|| "object".to_string());
-                    // "shader": the space the current Displacement was declared in.
-                    let shader = self.attributes.displacement.as_ref();
-                    let m = match space.as_str() {
-                        "shader" => Some(shader.map_or(self.ctm, |s| s.camera_from_shader)),
-                        s => self.named_space(s),
-                    };
-                    let m = m.unwrap_or_else(|| {
-                        self.diagnostics.warn(
-                            span,
-                            "Attribute",
-                            format!(
-                                "\"displacementbound\": unknown coordinatesystem \"{space}\"; using object space"
-                            ),
-                        );
-                        self.ctm
-                    });
-                    let stretch = [m.x_axis, m.y_axis, m.z_axis]
-                        .iter()
-                        .map(|a| a.truncate().length())
-                        .fold(0.0, f64::max);
-                    self.attrs().displacement_bound =
-                        (f64::from(f.unwrap_or(0.0)) * stretch) as f32;
-                }
-                ("displacementbound", "coordinatesystem") => {}
-                ("dice", "binary") => self.attrs().dice_binary = f.unwrap_or(0.0) != 0.0,
-                ("light", "shadows") => match on_off(params, &p) {
-                    Some(on) => self.attrs().light_shadows = on,
-                    None => self.diagnostics.error(
-                        span,
-                        "Attribute",
-                        "\"light\" \"shadows\": expected \"on\" or \"off\"",
-                    ),
-                },
-                ("light", "nsamples") => match f {
-                    Some(n) if n >= 1.0 && n.is_finite() => {
-                        self.attrs().light_samples = (n as u32).min(4096)
-                    }
-                    _ => self.diagnostics.error(
-                        span,
-                        "Attribute",
-                        "\"light\" \"nsamples\": expected a positive count",
-                    ),
-                },
-                ("visibility", "transmission") | ("render", "casts_shadows") => {
-                    match casts_shadows(params, &p) {
-                        Some(c) => self.attrs().casts_shadows = c,
-                        None => self.diagnostics.error(
-                            span,
-                            "Attribute",
-                            format!(
-                                "\"{name}\" \"{p}\": expected \"opaque\", \"Os\", \"shader\", \"transparent\", \"none\" or 0/1"
-                            ),
-                        ),
-                    }
-                }
-                (_, p) => self.diagnostics.warn(
-                    span,
-                    "Attribute",
-                    format!("\"{name}\" \"{p}\" not supported (ignored)"),
-                ),
-            }
-        }
-    }
 
     // ---- solids --------------------------------------------------------------------------
 
@@ -1055,7 +683,7 @@ impl Ri {
         let (ctm, motion) = m.base.clone();
         self.ctm = ctm;
         self.ctm_motion = motion;
-        self.attribute_or_transform(req, span);
+        self.transform_request(req, span);
         let result = (self.ctm, self.ctm_motion.take());
         let m = self.motion.as_mut().expect("checked above");
         m.transforms.push(result);
@@ -1394,15 +1022,6 @@ impl Ri {
     }
 }
 
-/// A `Basis` argument as a matrix: one of the named bases of RI Spec 3.2 §5.2.1 (their
-/// default steps are ignored: `Basis` carries explicit steps) or the explicit 16 numbers.
-fn basis_matrix(b: &BasisSpec) -> Option<[f32; 16]> {
-    match b {
-        BasisSpec::Matrix(m) => Some(*m),
-        BasisSpec::Named(n) => illume_geom::basis::basis_matrix(n).map(|(m, _)| m),
-    }
-}
-
 /// The `illume-rib` parser, with its diagnostics carried over.
 fn default_parser(reader: Box<dyn Read>, name: &str) -> RequestSource {
     Box::new(illume_rib::Parser::new(reader, name).map(|r| r.map_err(from_rib_diagnostic)))
@@ -1419,30 +1038,4 @@ pub fn from_rib_diagnostic(d: illume_rib::Diagnostic) -> Diagnostic {
         request: d.request,
         message: d.message,
     }
-}
-
-/// `"on"`/`"off"` (or 1/0) for `Attribute "light" "shadows"`.
-fn on_off(params: &ParamList, name: &str) -> Option<bool> {
-    if let Some(s) = paramlist::string(params, name) {
-        return match s.as_str() {
-            "on" => Some(true),
-            "off" => Some(false),
-            _ => None,
-        };
-    }
-    paramlist::float(params, name).map(|f| f != 0.0)
-}
-
-/// Whether geometry casts shadows under BMRT's `"visibility" "transmission"` /
-/// `"render" "casts_shadows"` values (or PRMan's integer `transmission`). "Os" and "shader"
-/// (partial transmission) are treated as opaque: shadow rays do not run shaders here.
-fn casts_shadows(params: &ParamList, name: &str) -> Option<bool> {
-    if let Some(s) = paramlist::string(params, name) {
-        return match s.as_str() {
-            "opaque" | "Os" | "shader" | "shade" => Some(true),
-            "transparent" | "none" => Some(false),
-            _ => None,
-        };
-    }
-    paramlist::float(params, name).map(|f| f != 0.0)
 }
