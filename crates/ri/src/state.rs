@@ -7,7 +7,7 @@ use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::frame::{Frame, FramePrimitive};
 use crate::motion::{segment, MotionKeys, MovingTransform};
 use crate::options::Options;
-use crate::solid::{SolidOp, SolidTree};
+use crate::solid::SolidTree;
 use glam::{DMat4, DVec3};
 use illume_geom::{BuildContext, GeomError};
 use illume_rib::{Declaration, Handle, Request, Span, Spanned};
@@ -442,50 +442,6 @@ impl Ri {
     // ---- attributes and transforms ----------------------------------------------------
 
     // ---- solids --------------------------------------------------------------------------
-
-    /// Opens a CSG node under the innermost open solid. The caller pushes the block, so
-    /// `SolidEnd` and block recovery pop `open_solids` in step with the block stack.
-    fn solid_begin(&mut self, op: &str, span: &Span) {
-        let op = SolidOp::from_token(op).unwrap_or_else(|| {
-            self.diagnostics.error(
-                span,
-                "SolidBegin",
-                format!("unknown operation `{op}` (treated as \"union\")"),
-            );
-            SolidOp::Union
-        });
-        let parent = self.open_solids.last().copied();
-        let node = match parent {
-            Some(p) if self.is_primitive_solid(p) => {
-                self.diagnostics.warn(
-                    span,
-                    "SolidBegin",
-                    "a primitive solid can not contain solids: this block's surfaces join the enclosing primitive solid",
-                );
-                p
-            }
-            _ => self.solids.add(op, parent),
-        };
-        self.open_solids.push(node);
-    }
-
-    /// The primitive solid the next geometry bounds: the open primitive solid, or, for a
-    /// surface directly inside a union/intersection/difference, a primitive solid of its own.
-    fn solid_leaf(&mut self) -> Option<u32> {
-        let top = *self.open_solids.last()?;
-        Some(if self.is_primitive_solid(top) {
-            top
-        } else {
-            self.solids.add(SolidOp::Primitive, Some(top))
-        })
-    }
-
-    fn is_primitive_solid(&self, node: u32) -> bool {
-        self.solids
-            .nodes
-            .get(node as usize)
-            .is_some_and(|n| n.op == SolidOp::Primitive)
-    }
 
     // ---- geometry ------------------------------------------------------------------------
 
