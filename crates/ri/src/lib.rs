@@ -13,6 +13,7 @@ pub mod camera;
 pub mod declarations;
 pub mod diagnostic;
 pub mod frame;
+mod geometry;
 mod lights;
 pub mod motion;
 pub mod options;
