@@ -1,5 +1,8 @@
-//! The RI state machine: one method per request family, a block stack that recovers from
-//! mismatched `Begin`/`End`, and frame hand-off at `WorldEnd`.
+//! The RI state machine: the `Ri` struct, the block stack that recovers from mismatched
+//! `Begin`/`End`, and the dispatch of each request to its family's module (options in
+//! `options/`, attributes in `attributes/`, transformations in `transform.rs`, lights,
+//! geometry, motion, solids, archives, procedurals, texture making, frames).
+use crate::archive::Recording;
 use crate::attributes::{Attributes, Light};
 use crate::camera::Camera;
 use crate::declarations::Declarations;
@@ -12,8 +15,9 @@ use glam::DMat4;
 use illume_rib::{Declaration, Handle, Request, Span, Spanned};
 use std::collections::HashMap;
 use std::io::Read;
-use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+pub use crate::make_texture::TextureMaker;
 
 /// A stream of parsed requests (a RIB file, an archive, a `RunProgram`'s output).
 pub type RequestSource = Box<dyn Iterator<Item = Result<Spanned<Request>, Diagnostic>>>;
@@ -22,13 +26,6 @@ pub type RequestSource = Box<dyn Iterator<Item = Result<Spanned<Request>, Diagno
 /// in `illume-rib`; the caller plugs it in so `ReadArchive`, `DelayedReadArchive` and
 /// `RunProgram` can read files.
 pub type StreamParser = Box<dyn Fn(Box<dyn Read>, &str) -> RequestSource>;
-
-/// Builds a texture for `MakeTexture`/`MakeShadow`/… (`illume-texture` plugs in here).
-pub type TextureMaker = Box<dyn FnMut(&Request, &Options) -> Result<(), String>>;
-
-/// Nested reads (archives including archives) beyond this depth are an error, not a stack
-/// overflow.
-const MAX_NESTING: usize = 64;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum BlockKind {
@@ -60,11 +57,6 @@ pub(crate) struct Block {
     pub(crate) ctm: DMat4,
     pub(crate) ctm_motion: Option<MovingTransform>,
     pub(crate) options: Option<Options>,
-}
-
-pub(crate) enum Recording {
-    Object(Handle),
-    Archive(String),
 }
 
 /// The RenderMan Interface state.
@@ -315,58 +307,6 @@ impl Ri {
         self.camera.is_some()
     }
 
-    /// While inside `ObjectBegin`/`ArchiveBegin`, requests are stored, not executed.
-    fn record(&mut self, req: &Spanned<Request>) -> bool {
-        match (&req.value, &mut self.recording) {
-            (Request::ObjectBegin(h), None) => {
-                self.recording = Some((Recording::Object(h.clone()), req.span.clone(), vec![]));
-                true
-            }
-            (Request::ArchiveBegin { name, .. }, None) => {
-                self.recording = Some((Recording::Archive(name.clone()), req.span.clone(), vec![]));
-                true
-            }
-            (Request::ObjectEnd, Some((Recording::Object(_), ..)))
-            | (Request::ArchiveEnd, Some((Recording::Archive(_), ..))) => {
-                let Some((rec, _, reqs)) = self.recording.take() else {
-                    return true;
-                };
-                match rec {
-                    Recording::Object(h) => {
-                        self.objects.insert(h, Arc::new(reqs));
-                    }
-                    Recording::Archive(n) => {
-                        self.archives.insert(n, Arc::new(reqs));
-                    }
-                }
-                true
-            }
-            (Request::ObjectBegin(_) | Request::ArchiveBegin { .. }, Some(_)) => {
-                self.diagnostics.error(
-                    &req.span,
-                    req.value.name(),
-                    "definitions can not nest (ignored)",
-                );
-                true
-            }
-            (Request::ObjectEnd | Request::ArchiveEnd, Some((open, span, _))) => {
-                let expected = match open {
-                    Recording::Object(_) => "ObjectEnd",
-                    Recording::Archive(_) => "ArchiveEnd",
-                };
-                let msg = format!("expected {expected} to close the definition at {span}");
-                self.diagnostics.error(&req.span, req.value.name(), msg);
-                self.recording = None;
-                true
-            }
-            (_, Some((_, _, reqs))) => {
-                reqs.push(req.clone());
-                true
-            }
-            (_, None) => false,
-        }
-    }
-
     pub(crate) fn push_block(&mut self, kind: BlockKind, span: &Span) {
         self.blocks.push(Block {
             kind,
@@ -422,250 +362,6 @@ impl Ri {
                 }
                 self.frame_number = None;
             }
-        }
-    }
-
-    // ---- options ---------------------------------------------------------------------
-
-    // ---- attributes and transforms ----------------------------------------------------
-
-    // ---- solids --------------------------------------------------------------------------
-
-    // ---- geometry ------------------------------------------------------------------------
-
-    // ---- motion blocks ---------------------------------------------------------------------
-
-    // ---- archives, instances, procedurals -------------------------------------------------
-
-    fn object_instance(&mut self, h: &Handle, span: &Span) {
-        let Some(reqs) = self.objects.get(h).cloned() else {
-            self.diagnostics.error(
-                span,
-                "ObjectInstance",
-                format!("no object with handle {h:?}"),
-            );
-            return;
-        };
-        self.replay(&reqs, span, "ObjectInstance");
-    }
-
-    fn replay(&mut self, reqs: &[Spanned<Request>], span: &Span, what: &str) {
-        if self.nesting >= MAX_NESTING {
-            self.diagnostics
-                .error(span, what, "nested too deeply (recursive archive?)");
-            return;
-        }
-        self.nesting += 1;
-        let depth = self.blocks.len();
-        self.push_block(BlockKind::Attribute, span);
-        for r in reqs {
-            self.request(r.clone());
-        }
-        self.close_to(depth, span, what);
-        self.nesting -= 1;
-    }
-
-    /// Closes blocks an archive left open, so it can not leak state into its reader.
-    fn close_to(&mut self, depth: usize, span: &Span, what: &str) {
-        while self.blocks.len() > depth + 1 {
-            let b = self.blocks.last().expect("len > depth + 1");
-            let msg = format!("{} at {} left open; closed", b.kind.begin(), b.span);
-            self.diagnostics.error(span, what, msg);
-            self.pop_block();
-        }
-        if self.blocks.len() > depth {
-            self.pop_block();
-        }
-    }
-
-    fn resolve(&self, file: &str, span: &Span) -> Option<PathBuf> {
-        let p = Path::new(file);
-        if p.is_absolute() || p.exists() {
-            return Some(p.to_path_buf());
-        }
-        let base = Path::new(&*span.file).parent().map(Path::to_path_buf);
-        self.options
-            .archive_path
-            .iter()
-            .map(|d| Path::new(d).join(file))
-            .chain(base.map(|b| b.join(file)))
-            .find(|c| c.exists())
-    }
-
-    fn read_archive(&mut self, file: &str, span: &Span) {
-        if let Some(reqs) = self.archives.get(file).cloned() {
-            self.replay(&reqs, span, "ReadArchive");
-            return;
-        }
-        let Some(path) = self.resolve(file, span) else {
-            self.diagnostics.error(
-                span,
-                "ReadArchive",
-                format!("can not find \"{file}\" (searched the archive searchpath and the including file's directory)"),
-            );
-            return;
-        };
-        match std::fs::File::open(&path) {
-            Ok(f) => self.read_stream(
-                Box::new(std::io::BufReader::new(f)),
-                &path.display().to_string(),
-                span,
-                "ReadArchive",
-            ),
-            Err(e) => {
-                self.diagnostics
-                    .error(span, "ReadArchive", format!("{}: {e}", path.display()))
-            }
-        }
-    }
-
-    fn read_stream(&mut self, reader: Box<dyn Read>, name: &str, span: &Span, what: &str) {
-        let Some(parser) = self.parser.as_ref() else {
-            self.diagnostics
-                .error(span, what, "no RIB parser is plugged in to read archives");
-            return;
-        };
-        if self.nesting >= MAX_NESTING {
-            self.diagnostics
-                .error(span, what, "nested too deeply (recursive archive?)");
-            return;
-        }
-        let source = parser(reader, name);
-        self.nesting += 1;
-        let depth = self.blocks.len();
-        self.push_block(BlockKind::Attribute, span);
-        self.run(source);
-        self.close_to(depth, span, what);
-        self.nesting -= 1;
-    }
-
-    fn procedural(&mut self, kind: &str, args: &[String], bound: &[f32; 6], span: &Span) {
-        if !self.in_world() {
-            self.diagnostics.error(
-                span,
-                "Procedural",
-                "only valid inside WorldBegin/WorldEnd (ignored)",
-            );
-            return;
-        }
-        if !self.world_active {
-            return;
-        }
-        let on_screen = match self.raster_bound(bound, self.ctm) {
-            None => true,
-            Some(r) => {
-                let cam = self.camera.as_ref().expect("in world");
-                let margin = f64::from(self.options.filter.1.max(self.options.filter.2));
-                let [x0, x1, y0, y1] = cam.crop.map(f64::from);
-                r[1] >= x0 - margin
-                    && r[0] <= x1 + margin
-                    && r[3] >= y0 - margin
-                    && r[2] <= y1 + margin
-            }
-        };
-        match kind {
-            "DelayedReadArchive" => {
-                let Some(file) = args.first() else {
-                    self.diagnostics
-                        .error(span, "Procedural", "DelayedReadArchive expects a file name");
-                    return;
-                };
-                if on_screen {
-                    self.read_archive(file, span);
-                }
-            }
-            "RunProgram" => {
-                if on_screen {
-                    let detail = self
-                        .raster_bound(bound, self.ctm)
-                        .map_or(f64::INFINITY, |r| (r[1] - r[0]) * (r[3] - r[2]));
-                    self.run_program(args, detail, span);
-                }
-            }
-            "DynamicLoad" => self.diagnostics.error(
-                span,
-                "Procedural",
-                "DynamicLoad is unsupported: Illume does not load native code; use RunProgram or DelayedReadArchive",
-            ),
-            other => self.diagnostics.error(
-                span,
-                "Procedural",
-                format!("unknown procedural \"{other}\", expected DelayedReadArchive, RunProgram or DynamicLoad"),
-            ),
-        }
-    }
-
-    /// `Procedural "RunProgram" ["prog args" "data"]`: the program reads `detail data` lines on
-    /// stdin and answers each with RIB ending in a 0xFF byte (RI Spec 3.2 §5.7).
-    fn run_program(&mut self, args: &[String], detail: f64, span: &Span) {
-        use std::io::Write;
-        use std::process::{Command, Stdio};
-        let (Some(prog), data) = (args.first(), args.get(1).cloned().unwrap_or_default()) else {
-            self.diagnostics
-                .error(span, "Procedural", "RunProgram expects a program name");
-            return;
-        };
-        let mut words = prog.split_whitespace();
-        let Some(exe) = words.next() else {
-            self.diagnostics
-                .error(span, "Procedural", "RunProgram: empty program name");
-            return;
-        };
-        let exe_path = self
-            .options
-            .procedural_path
-            .iter()
-            .map(|d| Path::new(d).join(exe))
-            .find(|p| p.is_file())
-            .unwrap_or_else(|| PathBuf::from(exe));
-        let child = Command::new(&exe_path)
-            .args(words)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .spawn();
-        let mut child = match child {
-            Ok(c) => c,
-            Err(e) => {
-                self.diagnostics
-                    .error(span, "Procedural", format!("RunProgram \"{exe}\": {e}"));
-                return;
-            }
-        };
-        if let Some(mut stdin) = child.stdin.take() {
-            let _ = writeln!(stdin, "{detail} {data}");
-        }
-        let output = match child.wait_with_output() {
-            Ok(o) => o,
-            Err(e) => {
-                self.diagnostics
-                    .error(span, "Procedural", format!("RunProgram \"{exe}\": {e}"));
-                return;
-            }
-        };
-        let mut bytes = output.stdout;
-        while bytes.last() == Some(&0xFF) {
-            bytes.pop();
-        }
-        self.read_stream(
-            Box::new(std::io::Cursor::new(bytes)),
-            &format!("{exe} (RunProgram)"),
-            span,
-            "Procedural",
-        );
-    }
-
-    fn make_texture(&mut self, req: &Request, span: &Span) {
-        match self.texture_maker.as_mut() {
-            Some(maker) => {
-                if let Err(e) = maker(req, &self.options) {
-                    self.diagnostics.error(span, req.name(), e);
-                }
-            }
-            None => self.diagnostics.warn(
-                span,
-                req.name(),
-                "texture making not supported yet (skipped)",
-            ),
         }
     }
 }
