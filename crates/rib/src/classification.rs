@@ -79,3 +79,54 @@ impl Request {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::Parser;
+
+    /// One request of each kind the families must tell apart, with its family by the chapter
+    /// of RI Spec 3.2 it is defined in: (option §4.1, transform §4.3 minus
+    /// `CoordinateSystem`, geometry chapter 5 minus `Procedural`).
+    #[test]
+    fn families_follow_the_spec_chapters_and_do_not_overlap() {
+        let cases: &[(&str, [bool; 3])] = &[
+            ("Format 64 48 1", [true, false, false]),
+            (
+                "Projection \"perspective\" \"fov\" [40]",
+                [true, false, false],
+            ),
+            ("PixelFilter \"box\" 1 1", [true, false, false]),
+            ("Hider \"hidden\"", [true, false, false]),
+            (
+                "Option \"limits\" \"bucketsize\" [16 16]",
+                [true, false, false],
+            ),
+            ("Translate 1 0 0", [false, true, false]),
+            (
+                "ConcatTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]",
+                [false, true, false],
+            ),
+            ("CoordSysTransform \"world\"", [false, true, false]),
+            ("CoordinateSystem \"a\"", [false, false, false]),
+            ("Sphere 1 -1 1 360", [false, false, true]),
+            ("Polygon \"P\" [0 0 0 1 0 0 1 1 0]", [false, false, true]),
+            ("Geometry \"teapot\"", [false, false, true]),
+            (
+                "Procedural \"DelayedReadArchive\" [\"a.rib\"] [-1 1 -1 1 -1 1]",
+                [false, false, false],
+            ),
+            ("Color [1 0 0]", [false, false, false]),
+            ("Surface \"plastic\"", [false, false, false]),
+            ("WorldBegin", [false, false, false]),
+        ];
+        for (rib, expected) in cases {
+            let req = Parser::new(rib.as_bytes(), "t.rib")
+                .next()
+                .expect("one request")
+                .expect("parses")
+                .value;
+            let got = [req.is_option(), req.is_transform(), req.is_geometry()];
+            assert_eq!(&got, expected, "{rib}");
+        }
+    }
+}
