@@ -1,6 +1,7 @@
 //! Archives and object instances (RI Spec 3.2 §4.4, §5.6, appendix D.3): `ObjectBegin`/
 //! `ArchiveBegin` record requests, `ObjectInstance` and `ReadArchive` replay them or read a
-//! file, each inside an attribute block that closes whatever the archive left open.
+//! file. `ReadArchive` is textual inclusion; instances and procedurals run inside an attribute
+//! block that closes whatever they left open (see [`Scope`]).
 use crate::state::{BlockKind, Ri};
 use illume_rib::{Handle, Request, Span, Spanned};
 use std::io::Read;
@@ -10,6 +11,20 @@ use std::sync::Arc;
 /// Nested reads (archives including archives) beyond this depth are an error, not a stack
 /// overflow.
 const MAX_NESTING: usize = 64;
+
+/// How the requests of an archive, an object instance or a procedural relate to the graphics
+/// state of the request that brought them in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Scope {
+    /// `ReadArchive`: textual inclusion, as if the archive's requests stood in its place
+    /// (PRMan and Aqsis behave so). What it sets persists (a camera transform, `Format` or
+    /// `Projection` before `WorldBegin`, attributes, lights), and blocks it opens stay open
+    /// for the reader to close: exporters split one frame across archives that way.
+    Inline,
+    /// `ObjectInstance` and procedurals: inside an attribute block, so they can not leak
+    /// state into their reader; blocks they leave open are closed (an error each).
+    Block,
+}
 
 pub(crate) enum Recording {
     Object(Handle),
@@ -78,10 +93,26 @@ impl Ri {
             );
             return;
         };
-        self.replay(&reqs, span, "ObjectInstance");
+        self.replay(&reqs, span, "ObjectInstance", Scope::Block);
     }
 
-    pub(crate) fn replay(&mut self, reqs: &[Spanned<Request>], span: &Span, what: &str) {
+    pub(crate) fn replay(
+        &mut self,
+        reqs: &[Spanned<Request>],
+        span: &Span,
+        what: &str,
+        scope: Scope,
+    ) {
+        self.nested(span, what, scope, |ri| {
+            for r in reqs {
+                ri.request(r.clone());
+            }
+        });
+    }
+
+    /// Runs `body` (the requests of an archive, instance or procedural) one nesting level
+    /// deeper, inside an attribute block unless it is inlined.
+    fn nested(&mut self, span: &Span, what: &str, scope: Scope, body: impl FnOnce(&mut Ri)) {
         if self.nesting >= MAX_NESTING {
             self.diagnostics
                 .error(span, what, "nested too deeply (recursive archive?)");
@@ -89,11 +120,13 @@ impl Ri {
         }
         self.nesting += 1;
         let depth = self.blocks.len();
-        self.push_block(BlockKind::Attribute, span);
-        for r in reqs {
-            self.request(r.clone());
+        if scope == Scope::Block {
+            self.push_block(BlockKind::Attribute, span);
         }
-        self.close_to(depth, span, what);
+        body(self);
+        if scope == Scope::Block {
+            self.close_to(depth, span, what);
+        }
         self.nesting -= 1;
     }
 
@@ -124,9 +157,9 @@ impl Ri {
             .find(|c| c.exists())
     }
 
-    pub(crate) fn read_archive(&mut self, file: &str, span: &Span) {
+    pub(crate) fn read_archive(&mut self, file: &str, span: &Span, scope: Scope) {
         if let Some(reqs) = self.archives.get(file).cloned() {
-            self.replay(&reqs, span, "ReadArchive");
+            self.replay(&reqs, span, "ReadArchive", scope);
             return;
         }
         let Some(path) = self.resolve(file, span) else {
@@ -143,6 +176,7 @@ impl Ri {
                 &path.display().to_string(),
                 span,
                 "ReadArchive",
+                scope,
             ),
             Err(e) => {
                 self.diagnostics
@@ -157,23 +191,14 @@ impl Ri {
         name: &str,
         span: &Span,
         what: &str,
+        scope: Scope,
     ) {
         let Some(parser) = self.parser.as_ref() else {
             self.diagnostics
                 .error(span, what, "no RIB parser is plugged in to read archives");
             return;
         };
-        if self.nesting >= MAX_NESTING {
-            self.diagnostics
-                .error(span, what, "nested too deeply (recursive archive?)");
-            return;
-        }
         let source = parser(reader, name);
-        self.nesting += 1;
-        let depth = self.blocks.len();
-        self.push_block(BlockKind::Attribute, span);
-        self.run(source);
-        self.close_to(depth, span, what);
-        self.nesting -= 1;
+        self.nested(span, what, scope, |ri| ri.run(source));
     }
 }

@@ -1,5 +1,6 @@
 //! `Procedural` (RI Spec 3.2 §5.7): `DelayedReadArchive` and `RunProgram`, expanded when their
 //! bound reaches the screen; `DynamicLoad` is refused (no native code is loaded).
+use crate::archive::Scope;
 use crate::state::Ri;
 use illume_rib::Span;
 use std::path::{Path, PathBuf};
@@ -43,7 +44,7 @@ impl Ri {
                     return;
                 };
                 if on_screen {
-                    self.read_archive(file, span);
+                    self.read_archive(file, span, Scope::Block);
                 }
             }
             "RunProgram" => {
@@ -123,6 +124,7 @@ impl Ri {
             &format!("{exe} (RunProgram)"),
             span,
             "Procedural",
+            Scope::Block,
         );
     }
 }

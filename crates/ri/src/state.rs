@@ -2,7 +2,7 @@
 //! `Begin`/`End`, and the dispatch of each request to its family's module (options in
 //! `options/`, attributes in `attributes/`, transformations in `transform.rs`, lights,
 //! geometry, motion, solids, archives, procedurals, texture making, frames).
-use crate::archive::Recording;
+use crate::archive::{Recording, Scope};
 use crate::attributes::{Attributes, Light};
 use crate::camera::Camera;
 use crate::declarations::Declarations;
@@ -275,7 +275,7 @@ impl Ri {
             }
             ObjectBegin(_) | ArchiveBegin { .. } => unreachable!("handled by record"),
             ObjectInstance(h) => self.object_instance(&h, &span),
-            ReadArchive { name: file, .. } => self.read_archive(&file, &span),
+            ReadArchive { name: file, .. } => self.read_archive(&file, &span, Scope::Inline),
             MakeTexture { .. }
             | MakeBump { .. }
             | MakeLatLongEnvironment { .. }
