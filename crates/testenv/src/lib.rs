@@ -33,20 +33,31 @@ fn means_ci(value: Option<&str>) -> bool {
 /// Callers return from the test after this; prefer the `shared_*`/`require_*` functions, which
 /// call it.
 pub fn missing(what: &str, fix: &str) {
-    report(in_ci(), what, fix);
-}
-
-fn report(ci: bool, what: &str, fix: &str) {
     let test = std::thread::current()
         .name()
         .unwrap_or("<unnamed test>")
         .to_string();
-    if ci {
-        panic!("CI=true: {test} cannot run: {what} ({fix}). CI must not skip tests.");
+    match verdict(in_ci(), &test, what, fix) {
+        Err(failure) => panic!("{failure}"),
+        Ok(skip) => {
+            // Written to the stderr handle, not with `eprintln!`: the test harness captures the
+            // print macros of passing tests, and a skip must show in a plain `cargo test`.
+            use std::io::Write;
+            let _ = writeln!(std::io::stderr(), "\n{skip}\n");
+        }
     }
-    eprintln!(
-        "\n******** SKIPPED {test}: {what} ({fix}); under CI=true this is a failure ********\n"
-    );
+}
+
+/// The skip message (`Ok`) or, under CI, the failure (`Err`) for `test` missing `what`.
+fn verdict(ci: bool, test: &str, what: &str, fix: &str) -> Result<String, String> {
+    if ci {
+        return Err(format!(
+            "CI=true: {test} cannot run: {what} ({fix}). CI must not skip tests."
+        ));
+    }
+    Ok(format!(
+        "******** SKIPPED {test}: {what} ({fix}); under CI=true this is a failure ********"
+    ))
 }
 
 /// `shared/<name>` (a directory such as `corpus`, `aqsis-regression`, `reference`), or `None`
@@ -193,13 +204,14 @@ mod tests {
 
     #[test]
     fn a_missing_input_fails_under_ci_and_only_skips_outside() {
-        let failed = std::panic::catch_unwind(|| report(true, "thing", "get it"));
-        let message = failed.expect_err("CI=true must fail");
-        let message = message.downcast_ref::<String>().expect("a formatted panic");
-        assert!(message.contains("thing (get it)"), "{message}");
-        assert!(message.contains("CI must not skip"), "{message}");
-        // Outside CI the same report only prints and returns.
-        report(false, "thing", "get it");
+        let failure = verdict(true, "t", "thing", "get it").expect_err("CI=true must fail");
+        assert!(
+            failure.contains("t cannot run: thing (get it)"),
+            "{failure}"
+        );
+        assert!(failure.contains("CI must not skip"), "{failure}");
+        let skip = verdict(false, "t", "thing", "get it").expect("a skip outside CI");
+        assert!(skip.contains("SKIPPED t: thing (get it)"), "{skip}");
     }
 
     #[test]
