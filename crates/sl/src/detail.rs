@@ -13,7 +13,6 @@
 //! detail: the nested body may write them in ways the encloser's walk does not see.
 
 use crate::ast::*;
-use crate::builtins;
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
 use crate::types::Detail;
@@ -472,7 +471,7 @@ impl Walker<'_, '_> {
             None => Vec::new(),
         };
         let mut d = match &call.callee {
-            Some(Callee::Builtin(b)) if builtins::is_inherently_varying(&b.name) => Detail::Varying,
+            Some(Callee::Builtin(b)) if b.id.is_inherently_varying() => Detail::Varying,
             Some(Callee::User(id)) if self.reads.get(id.0 as usize).copied().unwrap_or(true) => {
                 Detail::Varying
             }
