@@ -116,3 +116,31 @@ fn random_depends_on_the_point_not_its_grid_index() {
     assert!(a.iter().all(|v| (0.0..1.0).contains(&v.x)));
     assert!(a.windows(2).any(|w| w[0] != w[1]), "varies over the grid");
 }
+
+/// Issue 18: a call to another renderer's extension (`bake`) compiles with a warning; running
+/// it is an error reported through the renderer's warnings and the call gives 0 — but only
+/// when a point reaches it.
+#[test]
+fn unknown_functions_are_an_error_only_when_reached() {
+    let run = |src: &str| {
+        let shader = compile(src, ShaderKind::Surface);
+        let (inst, _) = SlInstance::bind(shader, &[], DMat4::IDENTITY);
+        let sink = illume_shade::WarnOnce::new();
+        let mut env = ShadingEnv::new();
+        env.warnings = Some(&sink);
+        let mut g = ShadingGrid::new(2, 2);
+        let cache = LightCache::run(&[], &g, &env);
+        let lights = Lights::from_cache(&cache);
+        inst.shade_surface(&mut g, &lights, &env);
+        (g.ci.clone(), sink.messages())
+    };
+    let (ci, warnings) = run("surface c() { Ci = color (1, 0, 0) + bake(\"m.ptc\", s, t); }");
+    assert!(ci.iter().all(|c| *c == Vec3::X), "{ci:?}");
+    assert_eq!(
+        warnings,
+        ["shader `c`: error: call to unknown function `bake`; it returns 0"]
+    );
+    // Never reached (s never exceeds 1 on the grid): no error.
+    let (_, warnings) = run("surface c() { Ci = 1; if (s > 2) Ci = bake(1); }");
+    assert!(warnings.is_empty(), "{warnings:?}");
+}

@@ -13,7 +13,9 @@ pub struct Call {
     /// Arguments as written (an `output` parameter's argument is a [`ExprKind::Var`] or an
     /// [`ExprKind::Index`] of a variable).
     pub args: Vec<Expr>,
-    /// Checker: the function called.
+    /// Checker: the function called; stays `None` after checking only for a name that is
+    /// neither a built-in nor a user function (another renderer's extension such as
+    /// `bake`), which the checker warned about and the executor reports if reached.
     pub callee: Option<Callee>,
 }
 

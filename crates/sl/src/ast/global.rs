@@ -163,7 +163,7 @@ impl Global {
 
 /// How a shader kind may use a global (RI 3.2 tables 11.1–11.6, with the common renderer
 /// leniencies: surface shaders may write `P` and `N`, light shaders may write `L`, as
-/// Listing 9.14's `L = 0` does).
+/// Listing 9.14's `L = 0` does, imager shaders may read `s` and `t`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Access {
     /// Not defined in this kind of shader.
@@ -201,9 +201,11 @@ impl Global {
                 G::P | G::I | G::E | G::L | G::Cl | G::Ol | G::ncomps | G::time | G::dtime => R,
                 _ => No,
             },
+            // `s`, `t` in imagers: not in RI 3.2's table 11.6, but peers define them (the
+            // pixel's position across the image) and imager shaders read them.
             ShaderKind::Imager => match self {
                 G::Ci | G::Oi | G::alpha => RW,
-                G::P | G::ncomps | G::time | G::dtime => R,
+                G::P | G::s | G::t | G::ncomps | G::time | G::dtime => R,
                 _ => No,
             },
             ShaderKind::Transformation => match self {

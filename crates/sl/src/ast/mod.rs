@@ -12,7 +12,8 @@
 //! - every [`Expr::ty`] concrete (no [`crate::types::BaseType::Unknown`]) and [`Expr::detail`] inferred
 //!   (varying iff anything it reads is varying);
 //! - every [`VarUse::var`], [`LValue::var`] and [`Declarator::var`] resolved;
-//! - every [`Call::callee`] resolved, with `args[i]` already of type `params[i].ty` of the chosen
+//! - every [`Call::callee`] resolved (except calls to unknown functions, which were warned
+//!   about and are an error only if executed), with `args[i]` already of type `params[i].ty` of the chosen
 //!   [`Signature`] (promotions inserted);
 //! - no [`ExprKind::Error`] or [`StmtKind::Error`].
 //!

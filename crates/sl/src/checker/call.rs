@@ -4,6 +4,7 @@
 use super::overload::{self, ArgInfo};
 use super::Checker;
 use crate::ast::*;
+use crate::diagnostic::Diagnostic;
 use crate::span::Span;
 use crate::types::{BaseType, Type};
 
@@ -56,8 +57,7 @@ impl Checker<'_> {
             return Type::UNKNOWN;
         }
         let Some(id) = BuiltinId::from_name(&call.name) else {
-            self.error(span, format!("unknown function '{}'", call.name));
-            return Type::UNKNOWN;
+            return self.unknown_call(span, call, expected);
         };
         let Some((sig, optional_from)) = overload::resolve_builtin(id, &infos, expected) else {
             let found: Vec<String> = infos.iter().map(|a| a.ty.to_string()).collect();
@@ -93,6 +93,31 @@ impl Checker<'_> {
             optional_from,
         }));
         ret
+    }
+
+    /// A call to a name that is neither a visible user function nor a built-in. A function
+    /// of that name defined later in the file is an error (SL functions are defined before
+    /// use). Anything else is taken for another renderer's extension (`bake`,
+    /// `transmission`, …), as peer compilers do: a warning here, the call left unresolved
+    /// (`callee: None`, typed from context, float without one), and an error reported by the
+    /// executor only if the call is reached.
+    fn unknown_call(&mut self, span: Span, call: &Call, expected: Option<BaseType>) -> Type {
+        if self.functions.iter().any(|f| f.name == call.name) {
+            self.error(span, format!("unknown function '{}'", call.name));
+            return Type::UNKNOWN;
+        }
+        self.diags.push(Diagnostic::warning(
+            span,
+            format!(
+                "unknown function '{}' (another renderer's extension?): calling it at run time is an error",
+                call.name
+            ),
+        ));
+        self.frame().reads_varying = true;
+        match expected {
+            Some(b) if b != BaseType::Void && b != BaseType::Unknown => Type::scalar(b),
+            _ => Type::FLOAT,
+        }
     }
 
     pub(super) fn user_call(

@@ -26,6 +26,12 @@ impl Parser<'_> {
             self.program.items.push(Item::Shader(id));
             return Ok(());
         }
+        // A qualified return type (`uniform float f () {…}`) is accepted and the qualifier
+        // ignored, as peer compilers do; the call's detail is inferred from the body.
+        if matches!(word.as_str(), "uniform" | "varying") && self.starts_function_at(1) {
+            self.bump();
+        }
+        let word = self.peek().ident().unwrap_or("").to_string();
         if BaseType::from_keyword(&word).is_some() {
             let id = self.function()?;
             self.program.items.push(Item::Function(id));

@@ -109,6 +109,12 @@ impl Parser<'_> {
                 "illuminance" => self.illuminance()?,
                 "illuminate" => self.illuminate()?,
                 "solar" => self.solar()?,
+                // `uniform float urand () {…}`: a nested function with a qualified return type
+                // (peer compilers accept it; the qualifier is ignored, the detail inferred).
+                "uniform" | "varying" if self.starts_function_at(1) => {
+                    self.bump();
+                    StmtKind::Function(self.function()?)
+                }
                 "extern" | "uniform" | "varying" | "output" => self.declaration()?,
                 _ if self.starts_function() => StmtKind::Function(self.function()?),
                 _ if value_type(w).is_some() && self.peek_at(1).ident().is_some() => {
@@ -131,12 +137,17 @@ impl Parser<'_> {
 
     /// `type name (` (or `void name (`) starts a nested function definition.
     pub(super) fn starts_function(&self) -> bool {
-        self.peek()
+        self.starts_function_at(0)
+    }
+
+    /// [`Self::starts_function`] `k` tokens ahead (after a `uniform`/`varying` qualifier).
+    pub(super) fn starts_function_at(&self, k: usize) -> bool {
+        self.peek_at(k)
             .ident()
             .and_then(BaseType::from_keyword)
             .is_some()
-            && self.peek_at(1).ident().is_some_and(|w| !is_reserved(w))
-            && self.peek_at(2).is(Punct::LParen)
+            && self.peek_at(k + 1).ident().is_some_and(|w| !is_reserved(w))
+            && self.peek_at(k + 2).is(Punct::LParen)
     }
 
     pub(super) fn if_stmt(&mut self) -> PResult<StmtKind> {

@@ -135,7 +135,15 @@ impl Exec<'_> {
             ExprKind::Call(call) => match &call.callee {
                 Some(Callee::User(f)) => self.call_user(*f, &call.args, mask, e.ty),
                 Some(Callee::Builtin(b)) => self.call_builtin(b, &call.args, mask, e.ty),
-                None => zero_of(e.ty),
+                None => {
+                    // Unknown to the checker (another renderer's extension, warned about at
+                    // compile time): an error now that it is reached.
+                    self.problem(format!(
+                        "error: call to unknown function `{}`; it returns 0",
+                        call.name
+                    ));
+                    zero_of(e.ty)
+                }
             },
             ExprKind::Texture(t) => self.texture_call(t, mask, e.ty),
             ExprKind::Error => zero_of(e.ty),
