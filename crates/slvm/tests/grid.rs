@@ -40,6 +40,22 @@ fn constant_surface_writes_ci_and_oi() {
     }
 }
 
+/// A surface shader that sets only `Ci` leaves `Oi = Os`, as PRMan, BMRT and Aqsis start it
+/// (Aqsis regression jobs Bug1664409 and Bug1741324 rely on it: with `Oi = 0` the sphere was
+/// transparent and its front and back summed to twice the colour).
+#[test]
+fn oi_starts_as_os() {
+    let mut g = ShadingGrid::new(3, 2);
+    for (i, os) in g.os.iter_mut().enumerate() {
+        *os = Vec3::new(1.0, 0.5, i as f32 / 8.0);
+    }
+    run_surface("surface c() { Ci = color(0.32); }", &mut g);
+    for i in 0..g.len() {
+        assert_eq!(g.ci[i], Vec3::splat(0.32));
+        assert_eq!(g.oi[i], Vec3::new(1.0, 0.5, i as f32 / 8.0), "point {i}");
+    }
+}
+
 #[test]
 fn varying_if_writes_only_its_points() {
     let mut g = ShadingGrid::new(4, 1); // s = 0, 1/3, 2/3, 1
