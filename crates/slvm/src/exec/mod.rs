@@ -104,7 +104,10 @@ pub struct Exec<'a> {
 }
 
 impl<'a> Exec<'a> {
-    /// An executor with the globals read from `grid` (P, N, Ng, I, s, t, …; `Ci = Oi = 0`).
+    /// An executor with the globals read from `grid` (P, N, Ng, I, s, t, …; `Ci = 0`, and
+    /// `Oi = Os` as PRMan, BMRT and Aqsis start it: a surface shader that sets only `Ci` is
+    /// opaque there, and real shaders such as Aqsis's regression `test.sl`/`mxmatch.sl` rely
+    /// on it; starting at 0 made them transparent, so front and back surfaces summed).
     pub fn new(
         prog: &'a Program,
         grid: &'a ShadingGrid,
@@ -124,6 +127,7 @@ impl<'a> Exec<'a> {
         globals[gidx(Global::dPdv)] = tv(&grid.dpdv);
         globals[gidx(Global::Cs)] = tv(&grid.cs);
         globals[gidx(Global::Os)] = tv(&grid.os);
+        globals[gidx(Global::Oi)] = tv(&grid.os);
         globals[gidx(Global::s)] = fv(&grid.s);
         globals[gidx(Global::t)] = fv(&grid.t);
         globals[gidx(Global::u)] = fv(&grid.u);
