@@ -209,3 +209,21 @@ fn light_shadows_and_nsamples_go_to_lights_declared_under_them_and_transmission_
     assert_eq!(casts, [true, false, true, false]);
     assert_eq!(ri.error_count(), 1, "\"maybe\" is neither on nor off");
 }
+
+/// `Hider "stochastic"` is PRMan's name for the hidden hider: no warning; `"raytrace"` falls back
+/// to hidden with one warning, and the hider's parameters still apply.
+#[test]
+fn hider_stochastic_is_hidden_and_unknown_hiders_warn() {
+    let hider = |name: &str| Request::Hider {
+        name: name.into(),
+        params: Default::default(),
+    };
+    let mut ri = feed(vec![hider("stochastic"), hider("hidden")]);
+    let d = ri.drain_diagnostics();
+    assert!(d.is_empty(), "{d:?}");
+    let mut ri = feed(vec![hider("raytrace")]);
+    let d = ri.drain_diagnostics();
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert_eq!(d[0].severity, Severity::Warning);
+    assert!(d[0].to_string().contains("raytrace"), "{}", d[0]);
+}

@@ -5,8 +5,9 @@ use crate::paramlist;
 use illume_rib::{ParamList, Span};
 
 impl Options {
-    /// `Hider "hidden"` and its parameters (`jitter`, `depthfilter`); other hiders fall back
-    /// to "hidden".
+    /// `Hider "hidden"` and its parameters (`jitter`, `depthfilter`). `"stochastic"` is PRMan's
+    /// name for the same z-buffer hider, so it is taken silently; other hiders (`raytrace`,
+    /// `photon`, vendor names) fall back to "hidden" with a warning.
     pub(crate) fn hider(
         &mut self,
         name: &str,
@@ -16,7 +17,7 @@ impl Options {
         diagnostics: &mut Diagnostics,
     ) {
         let o = self;
-        if h != "hidden" {
+        if !matches!(h, "hidden" | "stochastic") {
             diagnostics.warn(
                 span,
                 name,
