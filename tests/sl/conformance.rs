@@ -349,7 +349,7 @@ fn expected(name: &str, q: Pt) -> Option<DVec3> {
             let n = DVec3::new(0.0, 0.0, -1.0);
             let v = -p.normalize();
             let h = (n + v).normalize(); // L1 = N
-            let spec = n.dot(h).max(0.0).powf(1.0 / 0.2);
+            let spec = n.dot(h).max(0.0).powf(8.0 / 0.2); // the default model: PRMan's 8/roughness
             splat(1.0 + sqrt_half) + splat(0.5 * 0.2) + splat(spec)
         }
         // __nonspecular 0 and 1: (0 + 1) + (1 + 1).

@@ -10,11 +10,13 @@ use std::sync::Mutex;
 /// Which formula `specular()` uses (`Option "shading" "string specularmodel"`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum SpecularModel {
-    /// Blinn-Phong `max(0, N·H)^(1/roughness)`: the RI Specification and Listing 9.10.
-    #[default]
+    /// Blinn-Phong `max(0, N·H)^(1/roughness)`: the RI Specification and Listing 9.10
+    /// (`"blinn"`).
     Blinn,
-    /// `max(0, N·H)^(8/roughness)`: the exponent BMRT and Aqsis use to emulate PRMan, for scenes
-    /// tuned on those renderers (`"prman"`).
+    /// `max(0, N·H)^(8/roughness)`: the exponent PRMan, BMRT, Aqsis and 3Delight use. The
+    /// default, because every RIB a user has was tuned on one of those renderers and the book's
+    /// own figures were rendered with PRMan (`"prman"`).
+    #[default]
     PrMan,
 }
 
@@ -116,7 +118,7 @@ impl<'a> ShadingEnv<'a> {
             screen_from_camera: DMat4::IDENTITY,
             ndc_from_camera: DMat4::IDENTITY,
             raster_from_camera: DMat4::IDENTITY,
-            specular_model: SpecularModel::Blinn,
+            specular_model: SpecularModel::PrMan,
             textures: None,
             warnings: None,
             occlusion: None,

@@ -275,7 +275,8 @@ fn metals_scale_specular_by_the_base_colour() {
                 Vec3::ZERO
             } else {
                 let h = (lv + Vec3::NEG_Z).normalize();
-                1.5 * g.cs[k] * (kd * cos + g.n[k].dot(h).max(0.0).powf(1.0 / 0.3))
+                // The default specular model: PRMan's exponent 8/roughness.
+                1.5 * g.cs[k] * (kd * cos + g.n[k].dot(h).max(0.0).powf(8.0 / 0.3))
             };
             assert_close(g.ci[k], want, name);
         }
@@ -326,6 +327,6 @@ fn specular_model_option_values() {
         Some(SpecularModel::Blinn)
     );
     assert_eq!(SpecularModel::from_option("phong"), None);
-    assert_eq!(SpecularModel::default(), SpecularModel::Blinn);
+    assert_eq!(SpecularModel::default(), SpecularModel::PrMan);
     assert_eq!(SpecularModel::PrMan.exponent(0.1), 80.0);
 }

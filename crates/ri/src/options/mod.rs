@@ -130,7 +130,7 @@ impl Default for Options {
             archive_path: vec![".".into()],
             procedural_path: vec![".".into()],
             shadow_bias: [0.225, 0.225],
-            specular_model: "rispec".into(),
+            specular_model: "prman".into(),
             shutter: [0.0, 0.0],
             depth_of_field: None,
         }
