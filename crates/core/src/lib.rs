@@ -15,4 +15,5 @@
 //! Everything here is a leaf: it depends on `glam` only, so any crate may use it.
 #![forbid(unsafe_code)]
 
+pub mod filter;
 pub mod spaces;
