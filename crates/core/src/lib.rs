@@ -15,5 +15,6 @@
 //! Everything here is a leaf: it depends on `glam` only, so any crate may use it.
 #![forbid(unsafe_code)]
 
+pub mod basis;
 pub mod filter;
 pub mod spaces;
