@@ -17,4 +17,5 @@
 
 pub mod basis;
 pub mod filter;
+pub mod hash;
 pub mod spaces;
