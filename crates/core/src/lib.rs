@@ -18,4 +18,5 @@
 pub mod basis;
 pub mod filter;
 pub mod hash;
+pub mod noise;
 pub mod spaces;
