@@ -8,7 +8,8 @@
 //! * [`filter`]: the filter kernels and the one table of their RIB names (`PixelFilter`,
 //!   `MakeTexture`, `txmake -filter`).
 //! * [`basis`]: the spline basis matrices (`Basis`, SL `spline()`) and the power form.
-//! * [`hash`]: `lowbias32`, the integer hash behind every deterministic random stream.
+//! * [`hash`]: `lowbias32` and `splitmix64`, the integer hashes behind every deterministic
+//!   random stream.
 //! * [`noise`]: the one gradient noise (SL `noise`/`pnoise`/`cellnoise` and the built-in
 //!   shaders).
 //!
