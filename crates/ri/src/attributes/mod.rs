@@ -1,7 +1,12 @@
 //! The attribute state of RI Spec 3.2 §4.2, shared (`Arc`) by every primitive made under it.
+use crate::state::Ri;
 use glam::DMat4;
-use illume_rib::{Handle, ParamList, Span};
+use illume_rib::{Handle, ParamList, Request, Span};
 use std::sync::Arc;
+
+mod geometry;
+mod shading;
+mod user;
 
 /// A shader instance: name, parameter list as written, and the coordinate system it was
 /// declared in ("shader" space).
@@ -26,11 +31,6 @@ pub struct Light {
     /// on an area light's geometry (and shadow rays per point of a ray-traced shadow).
     pub samples: u32,
 }
-
-/// Bezier, the spec's default `Basis` (RI Spec 3.2 §5.2.1), in RIB row order.
-pub const BEZIER: [f32; 16] = [
-    -1.0, 3.0, -3.0, 1.0, 3.0, -6.0, 3.0, 0.0, -3.0, 3.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
-];
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Attributes {
@@ -83,6 +83,8 @@ pub struct Attributes {
 
 impl Default for Attributes {
     fn default() -> Self {
+        // Bezier is the spec's default `Basis` (RI Spec 3.2 §5.2.1).
+        let (bezier, _) = illume_geom::basis::basis_matrix("bezier").expect("a predefined basis");
         Attributes {
             color: [1.0; 3],
             opacity: [1.0; 3],
@@ -92,7 +94,7 @@ impl Default for Attributes {
             sides: 2,
             orientation_rh: false,
             texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-            basis: (BEZIER, 3, BEZIER, 3),
+            basis: (bezier, 3, bezier, 3),
             surface: None,
             displacement: None,
             atmosphere: None,
@@ -110,6 +112,50 @@ impl Default for Attributes {
             light_samples: 16,
             casts_shadows: true,
             trim_curves: None,
+        }
+    }
+}
+
+impl Ri {
+    /// The current attributes, copied first if a saved block still shares them.
+    pub(crate) fn attrs(&mut self) -> &mut Attributes {
+        Arc::make_mut(&mut self.attributes)
+    }
+
+    /// The attribute requests of RI Spec 3.2 §4.2, by family.
+    pub(crate) fn attribute(&mut self, req: Request, span: &Span) {
+        use Request::*;
+        match req {
+            Color(_)
+            | Opacity(_)
+            | TextureCoordinates(_)
+            | ShadingRate(_)
+            | ShadingInterpolation(_)
+            | Matte(_)
+            | Surface { .. }
+            | Displacement { .. }
+            | Atmosphere { .. }
+            | Interior { .. }
+            | Exterior { .. }
+            | Deformation { .. } => self.shading_attribute(req, span),
+            Sides(_)
+            | Orientation(_)
+            | ReverseOrientation
+            | TrimCurve { .. }
+            | Basis { .. }
+            | Bound(_)
+            | Detail(_)
+            | DetailRange(_)
+            | GeometricApproximation { .. }
+            | GeometricRepresentation(_) => self.geometry_attribute(req, span),
+            LightSource { .. } | AreaLightSource { .. } | Illuminate { .. } => {
+                self.light_request(req, span)
+            }
+            Attribute { name: n, params } => self.user_attribute(&n, &params, span),
+            other => {
+                self.diagnostics
+                    .error(span, other.name(), "request not handled here (internal)")
+            }
         }
     }
 }

@@ -29,7 +29,15 @@
 //! need it to loop over their argument.
 //!
 //! Built-ins that are inherently varying (they read the grid or the lights, e.g. `diffuse`,
-//! `Du`, `noise` of a varying point is varying anyway) are listed in [`is_inherently_varying`].
+//! `Du`, `noise` of a varying point is varying anyway) are listed in
+//! [`BuiltinId::is_inherently_varying`].
+//!
+//! Each table line's name is resolved to its [`BuiltinId`] when the table is parsed, so the
+//! checker resolves a call's name once and the executor dispatches on the id.
+
+mod id;
+
+pub use id::{BuiltinId, Family};
 
 use crate::types::BaseType;
 use std::sync::OnceLock;
@@ -67,6 +75,8 @@ pub struct ParamSpec {
 pub struct Overload {
     /// Function name.
     pub name: &'static str,
+    /// The built-in this overload belongs to.
+    pub id: BuiltinId,
     /// Return slot (`Fixed(Void)` for none).
     pub ret: Slot,
     /// Parameters in order.
@@ -207,34 +217,6 @@ T Deriv(T,f)
 f arraylength(A[])
 ";
 
-/// Names whose result varies over the grid whatever their arguments: they read the lights,
-/// the grid's neighbours, textures or random numbers, or another shader's values.
-pub fn is_inherently_varying(name: &str) -> bool {
-    matches!(
-        name,
-        "ambient"
-            | "diffuse"
-            | "specular"
-            | "specularbrdf"
-            | "phong"
-            | "trace"
-            | "random"
-            | "Du"
-            | "Dv"
-            | "Deriv"
-            | "area"
-            | "calculatenormal"
-            | "depth"
-            | "filterstep"
-            | "surface"
-            | "displacement"
-            | "lightsource"
-            | "atmosphere"
-            | "incident"
-            | "opposite"
-    )
-}
-
 fn parse_slot(s: &str) -> Slot {
     match s {
         "f" => Slot::Fixed(BaseType::Float),
@@ -275,6 +257,7 @@ fn parse_line(line: &'static str) -> Option<Overload> {
         })
         .collect();
     Some(Overload {
+        id: BuiltinId::from_name(name)?,
         name,
         ret: parse_slot(ret),
         params,
@@ -293,10 +276,15 @@ pub fn overloads(name: &str) -> impl Iterator<Item = &'static Overload> + '_ {
     all().iter().filter(move |o| o.name == name)
 }
 
+/// The overloads of one built-in, in table order.
+pub fn overloads_of(id: BuiltinId) -> impl Iterator<Item = &'static Overload> {
+    all().iter().filter(move |o| o.id == id)
+}
+
 /// True when `name` is a built-in function (including the texture family, which the parser
 /// turns into [`crate::ast::TextureCall`]).
 pub fn is_builtin(name: &str) -> bool {
-    overloads(name).next().is_some()
+    BuiltinId::from_name(name).is_some()
         || matches!(name, "texture" | "environment" | "shadow" | "bump")
 }
 
@@ -311,6 +299,14 @@ mod tests {
     fn every_table_line_parses() {
         let lines = TABLE.lines().filter(|l| !l.trim().is_empty()).count();
         assert_eq!(all().len(), lines);
+    }
+
+    #[test]
+    fn every_id_has_an_overload_and_every_overload_its_id() {
+        for &id in BuiltinId::ALL {
+            assert!(overloads_of(id).next().is_some(), "{id:?} has no overload");
+        }
+        assert!(all().iter().all(|o| o.id.name() == o.name));
     }
 
     #[test]

@@ -1,6 +1,12 @@
 //! Frame options with the defaults of RI Spec 3.2 Table 4.1 (and the PRMan `Option`s that real
 //! scenes rely on: limits, searchpath, shadow).
-use illume_rib::ParamList;
+use crate::diagnostic::Diagnostics;
+use illume_rib::{ParamList, Request, Span};
+
+mod camera;
+mod display;
+mod hider;
+mod user;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Projection {
@@ -159,6 +165,42 @@ impl Options {
             f(y0, self.yres),
             f(y1, self.yres),
         ]
+    }
+}
+
+impl Options {
+    /// Applies one option request (RI Spec 3.2 §4.1). Bad values are reported to
+    /// `diagnostics` and leave the option as it was.
+    pub(crate) fn apply(&mut self, req: Request, span: &Span, diagnostics: &mut Diagnostics) {
+        let name = req.name().to_string();
+        use Request::*;
+        match req {
+            Format { .. } | FrameAspectRatio(_) | ScreenWindow { .. } | CropWindow { .. } => {
+                self.screen_option(req, span, diagnostics)
+            }
+            Projection { .. } | Clipping { .. } | Shutter { .. } | DepthOfField { .. } => {
+                self.camera_option(req, span, diagnostics)
+            }
+            ClippingPlane { .. } | Imager { .. } | RelativeDetail(_) => {
+                diagnostics.warn(span, &name, "not supported yet (ignored)");
+            }
+            ColorSamples { n_rgb, .. } if n_rgb.len() != 9 => {
+                diagnostics.warn(
+                    span,
+                    &name,
+                    "only 3 RGB color samples are supported (ignored)",
+                );
+            }
+            PixelVariance(_)
+            | PixelSamples { .. }
+            | PixelFilter { .. }
+            | Exposure { .. }
+            | Quantize { .. }
+            | Display { .. } => self.display_option(req, span, diagnostics),
+            Hider { name: h, params } => self.hider(&name, &h, &params, span, diagnostics),
+            Option { name: n, params } => self.user_option(&n, &params, span, diagnostics),
+            _ => {}
+        }
     }
 }
 
