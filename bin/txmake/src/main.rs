@@ -98,7 +98,10 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "-filter" => {
                 let v = value(&mut i, a)?;
                 opts.filter = FilterKind::parse(&v).ok_or_else(|| {
-                    format!("-filter expects box, triangle, gaussian, catmull-rom, lanczos, mitchell or sinc, found `{v}`")
+                    format!(
+                        "-filter expects one of {}, found `{v}`",
+                        illume_texture::filter::filter_names_list()
+                    )
                 })?;
             }
             "-filterwidth" => {
@@ -318,6 +321,17 @@ mod tests {
 
     fn argv(s: &str) -> Vec<String> {
         s.split_whitespace().map(String::from).collect()
+    }
+
+    #[test]
+    fn every_name_of_the_shared_filter_table_is_accepted() {
+        // The same table PixelFilter and MakeTexture use (illume_core::filter).
+        for &(name, kind) in illume_texture::filter::FILTER_NAMES {
+            let a = parse(&argv(&format!("-filter {name} in.tif out.tx"))).unwrap();
+            assert_eq!(a.opts.filter, kind, "-filter {name}");
+        }
+        let e = parse(&argv("-filter bogus in.tif out.tx")).err().unwrap();
+        assert!(e.contains("catrom") && e.contains("bogus"), "{e}");
     }
 
     #[test]

@@ -70,26 +70,9 @@ pub(crate) fn write_exr(
     })
 }
 
-/// `Np · S`: screen space (`[-1,1]²`, y up) to NDC (`[0,1]²`, y down), in row-vector order.
-/// The map is affine in x and y, so it applies to homogeneous coordinates before the divide:
-/// `x_ndc·w = 0.5·x + 0.5·w`, `y_ndc·w = -0.5·y + 0.5·w`.
-pub fn world_to_ndc(world_to_screen: &[f32; 16]) -> [f32; 16] {
-    let s: [f64; 16] = [
-        0.5, 0.0, 0.0, 0.0, //
-        0.0, -0.5, 0.0, 0.0, //
-        0.0, 0.0, 1.0, 0.0, //
-        0.5, 0.5, 0.0, 1.0,
-    ];
-    let mut out = [0f32; 16];
-    for r in 0..4 {
-        for c in 0..4 {
-            out[r * 4 + c] = (0..4)
-                .map(|k| world_to_screen[r * 4 + k] as f64 * s[k * 4 + c])
-                .sum::<f64>() as f32;
-        }
-    }
-    out
-}
+/// OpenEXR's `worldToNDC` from the zfile's world → `Np` matrix: see
+/// [`illume_core::spaces::world_to_ndc_from_np`], the one home of the conversion.
+pub use illume_core::spaces::world_to_ndc_from_np as world_to_ndc;
 
 /// Rank of a channel name in the order images carry them.
 fn channel_rank(name: &str) -> usize {

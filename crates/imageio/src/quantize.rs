@@ -80,16 +80,12 @@ impl Quantize {
 /// Uniform noise in [-1, 1) from a hash of (x, y, channel): a 32-bit integer mix
 /// (the "lowbias32" finaliser), good enough that neighbouring pixels are uncorrelated.
 pub fn dither_noise(x: u32, y: u32, channel: u32) -> f64 {
-    let mut h = x
-        .wrapping_mul(0x9E37_79B1)
-        .wrapping_add(y.wrapping_mul(0x85EB_CA77))
-        .wrapping_add(channel.wrapping_mul(0xC2B2_AE3D))
-        ^ 0x27D4_EB2F;
-    h ^= h >> 16;
-    h = h.wrapping_mul(0x7FEB_352D);
-    h ^= h >> 15;
-    h = h.wrapping_mul(0x846C_A68B);
-    h ^= h >> 16;
+    let h = illume_core::hash::lowbias32(
+        x.wrapping_mul(0x9E37_79B1)
+            .wrapping_add(y.wrapping_mul(0x85EB_CA77))
+            .wrapping_add(channel.wrapping_mul(0xC2B2_AE3D))
+            ^ 0x27D4_EB2F,
+    );
     (h as f64) / 2_147_483_648.0 - 1.0
 }
 

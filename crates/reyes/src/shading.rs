@@ -3,7 +3,7 @@
 //! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
 use crate::rayscene::{self, RayScene};
 use crate::slshaders::SlShaders;
-use glam::{DMat4, DVec4, Vec3};
+use glam::{DMat4, Vec3};
 use illume_geom::Grid;
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
@@ -72,35 +72,11 @@ fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
 /// Projective camera → screen → NDC → raster maps (RI Spec 3.2 §4.1.1) as matrices, for the
 /// shaders' `transform("NDC", P)` (ReflMap, Listing 9.6).
 fn projections(frame: &Frame) -> (DMat4, DMat4, DMat4) {
-    let cam = &frame.camera;
-    let screen_from_camera = match cam.perspective_scale {
-        // (d·x, d·y, z, z): the divide by w = z gives d·x/z, d·y/z.
-        Some(d) => DMat4::from_cols(
-            DVec4::new(d, 0.0, 0.0, 0.0),
-            DVec4::new(0.0, d, 0.0, 0.0),
-            DVec4::new(0.0, 0.0, 1.0, 1.0),
-            DVec4::new(0.0, 0.0, 0.0, 0.0),
-        ),
-        None => DMat4::IDENTITY,
-    };
-    let [l, r, b, t] = cam.screen_window;
-    // NDC: (0,0) top-left to (1,1) bottom-right.
-    let ndc_from_screen = DMat4::from_cols(
-        DVec4::new(1.0 / (r - l), 0.0, 0.0, 0.0),
-        DVec4::new(0.0, -1.0 / (t - b), 0.0, 0.0),
-        DVec4::new(0.0, 0.0, 1.0, 0.0),
-        DVec4::new(-l / (r - l), t / (t - b), 0.0, 1.0),
-    );
-    let raster_from_ndc = DMat4::from_scale(glam::DVec3::new(
-        f64::from(cam.xres),
-        f64::from(cam.yres),
-        1.0,
-    ));
-    let ndc_from_camera = ndc_from_screen * screen_from_camera;
+    let p = frame.camera.projection();
     (
-        screen_from_camera,
-        ndc_from_camera,
-        raster_from_ndc * ndc_from_camera,
+        p.screen_from_camera(),
+        p.ndc_from_camera(),
+        p.raster_from_camera(),
     )
 }
 

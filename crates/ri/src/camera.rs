@@ -2,6 +2,7 @@
 //! Camera space is left-handed (+z forward, +y up); raster y points down.
 use crate::options::{Options, Projection};
 use glam::{DMat4, DVec3};
+use illume_core::spaces::{self, CameraProjection};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
@@ -21,9 +22,7 @@ pub struct Camera {
 impl Camera {
     pub fn new(options: &Options, camera_from_world: DMat4) -> Camera {
         let perspective_scale = match options.projection {
-            Projection::Perspective { fov } => {
-                Some(1.0 / (f64::from(fov).to_radians() * 0.5).tan())
-            }
+            Projection::Perspective { fov } => Some(spaces::perspective_scale(fov)),
             Projection::Orthographic => None,
         };
         Camera {
@@ -42,53 +41,33 @@ impl Camera {
         self.perspective_scale.is_some()
     }
 
-    /// Camera space → screen space (x, y) before the screen window; `None` behind the eye.
-    pub fn screen_from_camera(&self, p: DVec3) -> Option<(f64, f64)> {
-        match self.perspective_scale {
-            Some(d) => (p.z > 0.0).then(|| (p.x * d / p.z, p.y * d / p.z)),
-            None => Some((p.x, p.y)),
+    /// The camera → raster maps of this camera ([`illume_core::spaces`]).
+    #[inline]
+    pub fn projection(&self) -> CameraProjection {
+        CameraProjection {
+            perspective_scale: self.perspective_scale,
+            screen_window: self.screen_window,
+            xres: self.xres,
+            yres: self.yres,
         }
     }
 
+    /// Camera space → screen space (x, y) before the screen window; `None` behind the eye.
+    #[inline]
+    pub fn screen_from_camera(&self, p: DVec3) -> Option<(f64, f64)> {
+        self.projection().screen_from_camera_point(p)
+    }
+
     /// Camera space → raster (x right, y down, in pixels), keeping camera z.
+    #[inline]
     pub fn raster_from_camera(&self, p: DVec3) -> Option<DVec3> {
-        let (sx, sy) = self.screen_from_camera(p)?;
-        let [l, r, b, t] = self.screen_window;
-        let x = (sx - l) / (r - l) * f64::from(self.xres);
-        let y = (t - sy) / (t - b) * f64::from(self.yres);
-        Some(DVec3::new(x, y, p.z))
+        self.projection().raster_from_camera_point(p)
     }
 
     /// The matrix PRMan zfiles record as `Np`: world → screen with the screen window mapped to
     /// [-1,1]², y up (homogeneous; divide by w).
     pub fn screen_from_world(&self) -> DMat4 {
-        let [l, r, b, t] = self.screen_window;
-        let window = DMat4::from_cols_array(&[
-            2.0 / (r - l),
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            2.0 / (t - b),
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            1.0,
-            0.0,
-            -(r + l) / (r - l),
-            -(t + b) / (t - b),
-            0.0,
-            1.0,
-        ]);
-        let projection = match self.perspective_scale {
-            // x' = d·x, y' = d·y, w = z; depth kept as z so the matrix stays invertible.
-            Some(d) => DMat4::from_cols_array(&[
-                d, 0.0, 0.0, 0.0, 0.0, d, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0,
-            ]),
-            None => DMat4::IDENTITY,
-        };
-        window * projection * self.camera_from_world
+        self.projection().np_from_world(self.camera_from_world)
     }
 }
 

@@ -3,12 +3,8 @@
 //! a [`RenderInfo`] per frame (options) and per primitive (attributes); shaders only read it.
 use std::collections::HashMap;
 
-/// One queried value: `float`/`float[n]`/`point`/`color` data, or a string.
-#[derive(Clone, Debug, PartialEq)]
-pub enum InfoValue {
-    Floats(Vec<f32>),
-    String(String),
-}
+/// One queried value (defined with `textureinfo()`'s in the texture crate).
+pub use illume_texture::InfoValue;
 
 /// A name → value table for one query family (the frame's options or one primitive's
 /// attributes). A plain map: the queries are rare and the tables small.

@@ -29,43 +29,27 @@ impl Basis {
         })
     }
 
-    /// The RI basis matrix (row `i` multiplies `t^(3-i)`), RI Spec §4.
-    fn matrix(self) -> [[f32; 4]; 4] {
+    /// The RIB name of a cubic basis in [`illume_core::basis`]; `None` for linear/constant.
+    fn rib_name(self) -> Option<&'static str> {
         match self {
-            Basis::CatmullRom => [
-                [-0.5, 1.5, -1.5, 0.5],
-                [1.0, -2.5, 2.0, -0.5],
-                [-0.5, 0.0, 0.5, 0.0],
-                [0.0, 1.0, 0.0, 0.0],
-            ],
-            Basis::Bezier => [
-                [-1.0, 3.0, -3.0, 1.0],
-                [3.0, -6.0, 3.0, 0.0],
-                [-3.0, 3.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0, 0.0],
-            ],
-            Basis::BSpline => [
-                [-1.0 / 6.0, 0.5, -0.5, 1.0 / 6.0],
-                [0.5, -1.0, 0.5, 0.0],
-                [-0.5, 0.0, 0.5, 0.0],
-                [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0, 0.0],
-            ],
-            Basis::Hermite => [
-                [2.0, 1.0, -2.0, 1.0],
-                [-3.0, -2.0, 3.0, -1.0],
-                [0.0, 1.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0, 0.0],
-            ],
+            Basis::CatmullRom => Some("catmull-rom"),
+            Basis::Bezier => Some("bezier"),
+            Basis::BSpline => Some("b-spline"),
+            Basis::Hermite => Some("hermite"),
             // Not cubic: handled in `spline` directly.
-            Basis::Linear | Basis::Constant => [[0.0; 4]; 4],
+            Basis::Linear | Basis::Constant => None,
         }
     }
 
-    fn step(self) -> usize {
-        match self {
-            Basis::Bezier => 3,
-            Basis::Hermite => 2,
-            _ => 1,
+    /// The RI basis matrix (row `i` multiplies `t^(3-i)`) and step, the same matrices as the
+    /// RIB `Basis` request uses.
+    fn matrix_and_step(self) -> ([[f32; 4]; 4], usize) {
+        match self.rib_name().and_then(illume_core::basis::basis_matrix) {
+            Some((m, step)) => (
+                std::array::from_fn(|r| std::array::from_fn(|c| m[4 * r + c])),
+                step as usize,
+            ),
+            None => ([[0.0; 4]; 4], 1),
         }
     }
 }
@@ -112,7 +96,7 @@ pub fn spline<T: Knot>(basis: Basis, t: f32, knots: &[T]) -> T {
             inner[seg] * (1.0 - f) + inner[seg + 1] * f
         }
         _ => {
-            let step = basis.step();
+            let (m, step) = basis.matrix_and_step();
             if knots.len() < 4 {
                 return T::zero();
             }
@@ -121,7 +105,6 @@ pub fn spline<T: Knot>(basis: Basis, t: f32, knots: &[T]) -> T {
             let seg = (x.floor() as usize).min(nseg - 1);
             let u = x - seg as f32;
             let powers = [u * u * u, u * u, u, 1.0];
-            let m = basis.matrix();
             let mut out = T::zero();
             for (j, knot) in knots[seg * step..seg * step + 4].iter().enumerate() {
                 let w: f32 = (0..4).map(|i| powers[i] * m[i][j]).sum();

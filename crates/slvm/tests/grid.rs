@@ -232,3 +232,85 @@ fn every_table_overload_is_dispatched_to_an_implementation() {
     }
     assert_eq!(missing, ["arraylength(af)"]);
 }
+
+// One noise: the built-in `dented` shader (illume-shade, native Rust) and SL `noise()` in the VM
+// call the same function (`illume_core::noise`), so a built-in and its SL listing give the same
+// pattern; a second noise in either would fail these comparisons.
+
+/// A curved 9×7 grid spread over several noise cells, away from lattice points (where every
+/// noise is 0.5 and a comparison would prove nothing).
+fn noise_grid() -> ShadingGrid {
+    let mut g = ShadingGrid::new(9, 7);
+    for i in 0..g.len() {
+        let (u, v) = (g.u[i], g.v[i]);
+        g.p[i] = Vec3::new(3.1 * u - 1.37, 2.3 * v + 0.21, 4.0 + 0.7 * (u * v).sin());
+        g.n[i] = Vec3::new(u - 0.5, v - 0.5, -1.0).normalize();
+        g.ng[i] = g.n[i];
+    }
+    g.set_incident_from_p(false);
+    g
+}
+
+#[test]
+fn sl_noise_is_the_builtin_noise_bit_for_bit() {
+    let shader = compile(
+        "surface n() { Oi = 1; Ci = color(noise(P), noise(P * 2.5 + 0.3), 0); }",
+        ShaderKind::Surface,
+    );
+    let (inst, warnings) = SlInstance::bind(shader, &[], DMat4::IDENTITY);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let mut g = noise_grid();
+    let env = ShadingEnv::new();
+    let cache = LightCache::run(&[], &g, &env);
+    inst.shade_surface(&mut g, &Lights::from_cache(&cache), &env);
+    let mut varied = 0;
+    for i in 0..g.len() {
+        let p = g.p[i];
+        assert_eq!(g.ci[i].x, illume_shade::noise(p), "point {i} at {p}");
+        assert_eq!(g.ci[i].y, illume_shade::noise(p * 2.5 + 0.3), "point {i}");
+        varied += usize::from((g.ci[i].x - 0.5).abs() > 0.05);
+    }
+    assert!(varied > g.len() / 4, "only {varied} points away from 0.5");
+}
+
+#[test]
+fn dented_listing_displaces_like_the_builtin() {
+    // The RI companion's `dented`, written as the built-in documents it.
+    let src = r#"
+displacement dented(float Km = 1, power = 3, frequency = 1) {
+    point Psh = transform("shader", P);
+    float size = frequency, magnitude = 0, octave;
+    for (octave = 0; octave < 6; octave += 1) {
+        magnitude += abs(0.5 - noise(Psh * size)) / pow(2, octave);
+        size *= 2;
+    }
+    P -= Km * pow(magnitude, power) * normalize(N);
+    N = calculatenormal(P);
+}"#;
+    let params = [("Km", 0.15f32), ("frequency", 2.0)].map(|(n, v)| illume_rib::Param {
+        name: format!("uniform float {n}"),
+        value: illume_rib::Value::Floats(vec![v]),
+    });
+    let (inst, warnings) = SlInstance::bind(
+        compile(src, ShaderKind::Displacement),
+        &params,
+        DMat4::IDENTITY,
+    );
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let (builtin, warnings) = illume_shade::displacement("dented", &params).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let env = ShadingEnv::new();
+    let before = noise_grid();
+    let (mut sl, mut native) = (before.clone(), before.clone());
+    inst.displace(&mut sl, &env);
+    illume_shade::displace(&builtin, &mut native, &env);
+    let mut moved = 0;
+    for i in 0..before.len() {
+        // Same noise; only the order of a few float operations differs (powf vs pow, P += a·N
+        // vs P -= b·N), so the points agree to f32 rounding of the 4-unit coordinates.
+        let (a, b) = (sl.p[i], native.p[i]);
+        assert!((a - b).length() < 2e-6, "point {i}: SL {a} vs built-in {b}");
+        moved += usize::from((b - before.p[i]).length() > 1e-4);
+    }
+    assert!(moved > before.len() / 2, "only {moved} points dented");
+}

@@ -542,22 +542,9 @@ pub fn make_cube_face_environment(
     )
 }
 
-/// Converts the zfile's world→screen matrix (screen window on [-1,1]², y up) to OpenEXR's
-/// worldToNDC ((0,0) top-left, (1,1) bottom-right), both row-vector (RIB/Imath) order.
-pub fn screen_to_ndc(world_to_screen: &[f32; 16]) -> [f32; 16] {
-    // NDC = screen · S with S: x' = (x+1)/2, y' = (1-y)/2 (after the perspective divide, which
-    // commutes with this affine map when applied to homogeneous coordinates as below).
-    let m = glam::DMat4::from_cols_array(&world_to_screen.map(|v| v as f64));
-    // Row-vector matrices: from_cols_array gives M^T as a glam (column-vector) matrix, so the
-    // composite p·M·S is (S^T · M^T) in glam.
-    let s_t = glam::DMat4::from_cols_array(&[
-        0.5, 0.0, 0.0, 0.0, //
-        0.0, -0.5, 0.0, 0.0, //
-        0.0, 0.0, 1.0, 0.0, //
-        0.5, 0.5, 0.0, 1.0,
-    ]);
-    (s_t * m).to_cols_array().map(|v| v as f32)
-}
+/// Converts the zfile's world→screen matrix to OpenEXR's worldToNDC: see
+/// [`illume_core::spaces::world_to_ndc_from_np`], the one home of the conversion.
+pub use illume_core::spaces::world_to_ndc_from_np as screen_to_ndc;
 
 /// Builds a shadow map (`MakeShadow`, `txmake -shadow`): one float channel `Z` of light-camera
 /// depths; coarser levels of `Z` hold the *minimum* depth under each texel and channel `Zmax`

@@ -35,6 +35,7 @@ pub mod shading;
 mod shadow;
 pub mod shadowmap;
 mod texture;
+pub mod texturelookup;
 pub mod txfile;
 pub mod wrapmode;
 
@@ -47,6 +48,7 @@ pub use environment::{latlong_direction, latlong_st};
 pub use filter::FilterKind;
 pub use lookup::{corners_from_derivatives, vector_corners, LookupOptions};
 pub use request::make_from_request;
+pub use texturelookup::{InfoValue, ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
 pub use txfile::PixelFormat;
 pub use wrapmode::WrapMode;
 

@@ -1,11 +1,13 @@
-//! The texture cache as the shaders see it: [`illume_shade::TextureLookup`] over
+//! The texture cache as the shaders see it: [`crate::texturelookup::TextureLookup`] over
 //! [`TextureCache`]. Shading defines what it needs; this file translates the Shading Language
 //! options into the cache's, so neither crate knows the other's internals.
 use crate::cache::{TextureCache, TextureKind};
 use crate::filter::FilterKind;
 use crate::lookup::LookupOptions;
+use crate::texturelookup::{
+    InfoValue, ShadowOptions, TextureFilter, TextureLookup, TextureOptions,
+};
 use glam::Vec3;
-use illume_shade::{InfoValue, ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
 
 fn lookup_options(o: &TextureOptions) -> LookupOptions {
     LookupOptions {

@@ -14,13 +14,7 @@ use crate::sampler::Sampler;
 use crate::{TextureCache, TextureError};
 use glam::{DVec4, Vec3};
 
-fn mix(mut x: u64) -> u64 {
-    x ^= x >> 30;
-    x = x.wrapping_mul(0xbf58476d1ce4e5b9);
-    x ^= x >> 27;
-    x = x.wrapping_mul(0x94d049bb133111eb);
-    x ^ (x >> 31)
-}
+use illume_core::hash::splitmix64 as mix;
 
 fn unit(h: u64) -> f32 {
     (h >> 40) as f32 / (1u64 << 24) as f32

@@ -1,8 +1,8 @@
-//! The cache seen through `illume_shade::TextureLookup`: what the built-in shaders call.
+//! The cache seen through `illume_texture::TextureLookup`: what the built-in shaders call.
 
 use illume_imageio::Image;
-use illume_shade::{TextureLookup, TextureOptions};
 use illume_texture::{make_texture, MakeOptions, TextureCache};
+use illume_texture::{TextureLookup, TextureOptions};
 
 #[test]
 fn shader_lookup_reads_the_made_texture_and_misses_are_none() {
@@ -56,7 +56,7 @@ fn shader_lookup_reads_the_made_texture_and_misses_are_none() {
 #[test]
 fn textureinfo_describes_made_textures_and_shadow_maps() {
     use illume_imageio::DepthMatrices;
-    use illume_shade::InfoValue;
+    use illume_texture::InfoValue;
     let dir = std::env::temp_dir().join(format!("illume-texinfo-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     // A 3-channel 32×8 texture made by `make_texture`.

@@ -29,17 +29,16 @@ impl Options {
                 xwidth,
                 ywidth,
             } => {
-                const KNOWN: &[&str] = &[
-                    "box",
-                    "triangle",
-                    "catmull-rom",
-                    "gaussian",
-                    "sinc",
-                    "mitchell",
-                    "separable-catmull-rom",
-                ];
-                if !KNOWN.contains(&f.as_str()) {
-                    diagnostics.warn(span, &name, format!("unknown filter `{f}`, using gaussian"));
+                use illume_core::filter::{filter_names_list, FilterKind};
+                if FilterKind::parse(&f).is_none() {
+                    diagnostics.warn(
+                        span,
+                        &name,
+                        format!(
+                            "unknown filter `{f}`, using gaussian (expected one of {})",
+                            filter_names_list()
+                        ),
+                    );
                     o.filter = ("gaussian".into(), xwidth.max(1.0), ywidth.max(1.0));
                 } else if !(xwidth > 0.0 && ywidth > 0.0) {
                     diagnostics.error(

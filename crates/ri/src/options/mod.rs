@@ -140,8 +140,9 @@ impl Default for Options {
 impl Options {
     /// The frame aspect ratio in effect.
     pub fn frame_aspect(&self) -> f32 {
-        self.frame_aspect
-            .unwrap_or(self.xres as f32 * self.pixel_aspect / self.yres as f32)
+        self.frame_aspect.unwrap_or_else(|| {
+            illume_core::spaces::frame_aspect(self.xres, self.yres, self.pixel_aspect)
+        })
     }
 
     /// The screen window in effect: the spec's default is `[-a,a]×[-1,1]` for `a ≥ 1`,
@@ -150,12 +151,7 @@ impl Options {
         if let Some(w) = self.screen_window {
             return w;
         }
-        let a = self.frame_aspect();
-        if a >= 1.0 {
-            [-a, a, -1.0, 1.0]
-        } else {
-            [-1.0, 1.0, -1.0 / a, 1.0 / a]
-        }
+        illume_core::spaces::default_screen_window(self.frame_aspect())
     }
 
     /// The crop window in pixels, half-open `[x0,x1)×[y0,y1)`, rounded as RI Spec 3.2

@@ -5,9 +5,9 @@
 use crate::exec::{zero_of, Exec};
 use crate::value::{Mask, Slot, Value};
 use glam::Vec3;
-use illume_shade::{ShadowOptions, TextureFilter, TextureOptions};
 use illume_sl::ast::{Global, TextureCall, TextureKind};
 use illume_sl::types::{BaseType, Type};
+use illume_texture::{ShadowOptions, TextureFilter, TextureOptions};
 
 /// The optional `"name", value` parameters, read as uniform values.
 #[derive(Default)]
