@@ -16,7 +16,7 @@ mod geometry;
 mod latlong;
 
 use forms::scratch;
-use illume_reyes::Rendered;
+use illume_render::Rendered;
 use std::path::{Path, PathBuf};
 use support::run_rib;
 

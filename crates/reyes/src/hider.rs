@@ -7,8 +7,8 @@ use crate::lens::Lens;
 use crate::motion::{sample_moving_grid, GridMotion, SampleTarget};
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
 use crate::sampling::{sample_position, sample_time_lens};
-use crate::shading::FrameShading;
-use crate::{RenderSettings, Rendered, Stats};
+use crate::shader::GridShader;
+use crate::{Rendered, Stats};
 use glam::Vec3;
 use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
 use rayon::prelude::*;
@@ -184,88 +184,150 @@ fn ns(t: Instant) -> u64 {
     t.elapsed().as_nanos() as u64
 }
 
-pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
-    let opts = &frame.options;
-    let cam = &frame.camera;
-    let filter = PixelFilter::new(&opts.filter.0, opts.filter.1, opts.filter.2);
-    let (rx, ry) = filter.radius();
-    let [cx0, cx1, cy0, cy1] = cam.crop;
-    let (width, height) = (cx1 - cx0, cy1 - cy0);
-    let margin = rx.max(ry) + 1.0;
-    let region = [
-        cx0 as f32 - margin,
-        cx1 as f32 + margin,
-        cy0 as f32 - margin,
-        cy1 as f32 + margin,
-    ];
-    let mut warnings = Vec::new();
-    let lens = Lens::new(opts.depth_of_field, cam);
-    if opts.depth_of_field.is_some() && !cam.is_perspective() {
-        warnings.push(Diagnostic {
-            severity: Severity::Warning,
-            span: illume_rib::Span::synthetic(),
-            request: Some("DepthOfField".to_string()),
-            message: "depth of field needs a perspective camera (ignored)".to_string(),
-        });
-    }
-    let [open, close] = opts.shutter;
-    let t0 = Instant::now();
-    let refiner = Refiner {
-        camera: cam,
-        region,
-        eye_splits: opts.eye_splits,
-        grid_size: opts.grid_size.max(1) as usize,
-        lens,
-    };
-    let per_prim: Vec<(Vec<Piece>, RefineCounts)> = frame
-        .primitives
-        .par_iter()
-        .map(|fp| {
-            let mut out = Vec::new();
-            let mut counts = RefineCounts::default();
-            // A moving primitive keeps its keys unless the shutter is closed at (or before)
-            // its first key, where it is exactly its first key.
-            let later = match &fp.motion {
-                Some(m) if close > open || m.times.first().is_some_and(|&t| open > t) => m
-                    .later
-                    .iter()
-                    .map(|k| PrimRef::Borrowed(k.as_ref()))
-                    .collect(),
-                _ => Vec::new(),
-            };
-            refiner.refine(
-                PrimRef::Borrowed(fp.primitive.as_ref()),
-                later,
-                &fp.attributes,
-                0,
-                0,
-                &mut out,
-                &mut counts,
-            );
-            (out, counts)
-        })
-        .collect();
-    let mut pieces: Vec<Piece> = Vec::new();
-    let mut culled = 0;
-    for (index, ((ps, counts), fp)) in per_prim.into_iter().zip(&frame.primitives).enumerate() {
-        culled += counts.culled;
-        if counts.eye_dropped > 0 {
+/// One frame's hider: built from the frame by the refine stage (bound, cull, eye-split, split:
+/// [`Hider::new`]), then run over the buckets with a shader ([`Hider::render`]).
+pub struct Hider<'f> {
+    frame: &'f Frame,
+    refiner: Refiner<'f>,
+    pieces: Vec<Piece<'f>>,
+    filter: PixelFilter,
+    /// Filter reach (pixels) around each piece's raster bound.
+    margin: f32,
+    culled: u64,
+    split_ns: u64,
+    /// Problems found so far, in the order they arose. A driver appends its own (e.g. shader
+    /// binding) here before [`Hider::render`], which adds the rest and hands them all back.
+    pub warnings: Vec<Diagnostic>,
+}
+
+impl<'f> Hider<'f> {
+    /// The refine stage: every primitive of the frame bound, culled against the crop region
+    /// (grown by the filter's reach), split across the eye plane and split until diceable.
+    pub fn new(frame: &'f Frame) -> Hider<'f> {
+        let opts = &frame.options;
+        let cam = &frame.camera;
+        let filter = PixelFilter::new(&opts.filter.0, opts.filter.1, opts.filter.2);
+        let (rx, ry) = filter.radius();
+        let [cx0, cx1, cy0, cy1] = cam.crop;
+        let margin = rx.max(ry) + 1.0;
+        let region = [
+            cx0 as f32 - margin,
+            cx1 as f32 + margin,
+            cy0 as f32 - margin,
+            cy1 as f32 + margin,
+        ];
+        let mut warnings = Vec::new();
+        let lens = Lens::new(opts.depth_of_field, cam);
+        if opts.depth_of_field.is_some() && !cam.is_perspective() {
             warnings.push(Diagnostic {
                 severity: Severity::Warning,
-                span: fp.span.clone(),
-                request: None,
-                message: format!(
-                    "{} piece(s) still crossed the eye plane after {} eye splits (or split too deep) and were dropped",
-                    counts.eye_dropped, opts.eye_splits
-                ),
+                span: illume_rib::Span::synthetic(),
+                request: Some("DepthOfField".to_string()),
+                message: "depth of field needs a perspective camera (ignored)".to_string(),
             });
         }
-        pieces.extend(ps.into_iter().map(|mut p| {
-            p.prim_index = index;
-            p
-        }));
+        let [open, close] = opts.shutter;
+        let t0 = Instant::now();
+        let refiner = Refiner {
+            camera: cam,
+            region,
+            eye_splits: opts.eye_splits,
+            grid_size: opts.grid_size.max(1) as usize,
+            lens,
+        };
+        let per_prim: Vec<(Vec<Piece>, RefineCounts)> = frame
+            .primitives
+            .par_iter()
+            .map(|fp| {
+                let mut out = Vec::new();
+                let mut counts = RefineCounts::default();
+                // A moving primitive keeps its keys unless the shutter is closed at (or before)
+                // its first key, where it is exactly its first key.
+                let later = match &fp.motion {
+                    Some(m) if close > open || m.times.first().is_some_and(|&t| open > t) => m
+                        .later
+                        .iter()
+                        .map(|k| PrimRef::Borrowed(k.as_ref()))
+                        .collect(),
+                    _ => Vec::new(),
+                };
+                refiner.refine(
+                    PrimRef::Borrowed(fp.primitive.as_ref()),
+                    later,
+                    &fp.attributes,
+                    0,
+                    0,
+                    &mut out,
+                    &mut counts,
+                );
+                (out, counts)
+            })
+            .collect();
+        let mut pieces: Vec<Piece> = Vec::new();
+        let mut culled = 0;
+        for (index, ((ps, counts), fp)) in per_prim.into_iter().zip(&frame.primitives).enumerate() {
+            culled += counts.culled;
+            if counts.eye_dropped > 0 {
+                warnings.push(Diagnostic {
+                    severity: Severity::Warning,
+                    span: fp.span.clone(),
+                    request: None,
+                    message: format!(
+                        "{} piece(s) still crossed the eye plane after {} eye splits (or split too deep) and were dropped",
+                        counts.eye_dropped, opts.eye_splits
+                    ),
+                });
+            }
+            pieces.extend(ps.into_iter().map(|mut p| {
+                p.prim_index = index;
+                p
+            }));
+        }
+        let split_ns = ns(t0);
+        Hider {
+            frame,
+            refiner,
+            pieces,
+            filter,
+            margin,
+            culled,
+            split_ns,
+            warnings,
+        }
     }
-    let split_ns = ns(t0);
+
+    /// The bucket stage (see [`render`]).
+    pub fn render(
+        self,
+        shader: &dyn GridShader,
+        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    ) -> Rendered {
+        render(self, shader, progress)
+    }
+}
+
+/// The bucket stage: every bucket's pieces diced, shaded by `shader`, sampled, composited and
+/// filtered; `progress` is called after each bucket with (buckets done, bucket count).
+pub(crate) fn render(
+    hider: Hider,
+    shader: &dyn GridShader,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Rendered {
+    let Hider {
+        frame,
+        refiner,
+        mut pieces,
+        filter,
+        margin,
+        culled,
+        split_ns,
+        mut warnings,
+    } = hider;
+    let opts = &frame.options;
+    let cam = &frame.camera;
+    let [cx0, cx1, cy0, cy1] = cam.crop;
+    let (width, height) = (cx1 - cx0, cy1 - cy0);
+    let lens = refiner.lens;
 
     // Buckets over the crop region; each lists the pieces whose padded bound overlaps it.
     let [bw, bh] = opts.bucket_size.map(|b| b.max(1));
@@ -285,8 +347,6 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let spp = opts.pixel_samples;
     let blurred = lens.is_some() || pieces.iter().any(|p| !p.later.is_empty());
 
-    let (shading, shader_warnings) = FrameShading::new(frame, settings.textures);
-    warnings.extend(shader_warnings);
     // Render every bucket; then, if a displaced grid turned out larger than its
     // displacementbound, grow its piece to the measured bound, re-list the buckets and render
     // again exactly the buckets whose lists changed, until no new grid overflows. Each pass
@@ -316,7 +376,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
                 let py1 = (py0 + bh).min(cy1);
                 let out = render_bucket(
                     frame,
-                    &shading,
+                    shader,
                     &pieces,
                     &grids,
                     &lists[b],
@@ -328,7 +388,7 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
                     &counters,
                 );
                 let n = done.fetch_add(1, Relaxed) + 1;
-                if let Some(p) = settings.progress {
+                if let Some(p) = progress {
                     p(n, total.load(Relaxed));
                 }
                 out
@@ -435,21 +495,9 @@ pub(crate) fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
         shade_seconds: counters.shade_ns.load(Relaxed) as f64 * 1e-9,
         sample_seconds: counters.sample_ns.load(Relaxed) as f64 * 1e-9,
         filter_seconds: counters.filter_ns.load(Relaxed) as f64 * 1e-9,
-        nonfinite: shading.nonfinite.load(Relaxed),
+        // The hider does not see shaded values: the driver counts them.
+        nonfinite: 0,
     };
-    // Shading problems found while rendering (missing maps, unknown spaces), once each.
-    warnings.extend(
-        shading
-            .warnings
-            .messages()
-            .into_iter()
-            .map(|message| Diagnostic {
-                severity: Severity::Warning,
-                span: illume_rib::Span::synthetic(),
-                request: None,
-                message,
-            }),
-    );
     Rendered {
         x0: cx0,
         y0: cy0,
@@ -534,7 +582,7 @@ fn overflow_warnings(
 
 fn dice_and_shade(
     frame: &Frame,
-    shading: &FrameShading,
+    shader: &dyn GridShader,
     piece: &Piece,
     counters: &Counters,
 ) -> Option<Arc<ShadedGrid>> {
@@ -548,7 +596,7 @@ fn dice_and_shade(
     let a = &piece.attrs;
     // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
     let flip = if a.orientation_rh { -1.0 } else { 1.0 };
-    let shaded = shading.shade_grid(&grid, a, flip, piece.prim_index);
+    let shaded = shader.shade_grid(&grid, a, flip, piece.prim_index);
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;
     // Displacement may have moved the points; sample where the shader left them.
@@ -765,7 +813,7 @@ pub(crate) fn edge(a: glam::DVec3, b: glam::DVec3, r: f64, x: f64, y: f64) -> bo
 #[allow(clippy::too_many_arguments)]
 fn render_bucket(
     frame: &Frame,
-    shading: &FrameShading,
+    shader: &dyn GridShader,
     pieces: &[Piece],
     grids: &[GridSlot],
     list: &[usize],
@@ -827,7 +875,7 @@ fn render_bucket(
             continue;
         }
         let t = Instant::now();
-        let grid = grids[id].get(|| dice_and_shade(frame, shading, piece, counters));
+        let grid = grids[id].get(|| dice_and_shade(frame, shader, piece, counters));
         shade_elapsed += ns(t);
         let Some(g) = grid.as_deref() else { continue };
         if let (Some(m), Some(lens)) = (&g.motion, blur) {

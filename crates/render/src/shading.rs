@@ -1,10 +1,12 @@
-//! Grid shading through `illume-shade`: the frame's shaders are bound once (parameters parsed,
-//! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
-//! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
+//! Grid shading through `illume-shade`, the hider's [`GridShader`]: the frame's shaders are
+//! bound once (parameters parsed, unknown names reported once), then every diced grid is copied
+//! into a [`ShadingGrid`] and shaded with the lights that illuminate it. `Surface "null"` skips
+//! shading (depth passes keep `Os`).
 use crate::rayscene::{self, RayScene};
 use crate::slshaders::SlShaders;
 use glam::{DMat4, DVec4, Vec3};
 use illume_geom::Grid;
+use illume_reyes::{GridShader, Shaded};
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
     displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
@@ -13,13 +15,6 @@ use illume_shade::{
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
-
-pub(crate) struct Shaded {
-    /// Positions after displacement (the diced positions when there is none).
-    pub p: Vec<Vec3>,
-    pub ci: Vec<Vec3>,
-    pub oi: Vec<Vec3>,
-}
 
 /// A bound displacement, keyed like the surfaces; `None` when the name is unknown (warned).
 type BoundDisplacement = Option<Arc<Displacement>>;
@@ -447,5 +442,12 @@ impl<'a> FrameShading<'a> {
             ci: g.ci,
             oi: g.oi,
         }
+    }
+}
+
+/// The hider's view of the frame's shaders.
+impl GridShader for FrameShading<'_> {
+    fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
+        FrameShading::shade_grid(self, grid, attrs, flip, prim)
     }
 }
