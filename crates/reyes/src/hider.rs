@@ -2,7 +2,7 @@
 //! shaded once (by whichever bucket needs them first); micropolygons sampled into visible-point
 //! lists; lists composited front to back; pixel filter; exposure.
 use crate::csg::{SolidResolver, NO_SOLID};
-use crate::filter::PixelFilter;
+use crate::film::{Composited, Film, PixelBlock, SampleRegion};
 use crate::lens::Lens;
 use crate::motion::{sample_moving_grid, GridMotion, SampleTarget};
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
@@ -10,7 +10,7 @@ use crate::sampling::{sample_position, sample_time_lens};
 use crate::shader::GridShader;
 use crate::{Rendered, Stats};
 use glam::Vec3;
-use illume_ri::{DepthFilter, Diagnostic, Frame, Severity};
+use illume_ri::{Diagnostic, Frame, Severity};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::Relaxed};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -190,7 +190,7 @@ pub struct Hider<'f> {
     frame: &'f Frame,
     refiner: Refiner<'f>,
     pieces: Vec<Piece<'f>>,
-    filter: PixelFilter,
+    film: Film,
     /// Filter reach (pixels) around each piece's raster bound.
     margin: f32,
     culled: u64,
@@ -206,8 +206,8 @@ impl<'f> Hider<'f> {
     pub fn new(frame: &'f Frame) -> Hider<'f> {
         let opts = &frame.options;
         let cam = &frame.camera;
-        let filter = PixelFilter::new(&opts.filter.0, opts.filter.1, opts.filter.2);
-        let (rx, ry) = filter.radius();
+        let film = Film::new(opts);
+        let (rx, ry) = film.filter.radius();
         let [cx0, cx1, cy0, cy1] = cam.crop;
         let margin = rx.max(ry) + 1.0;
         let region = [
@@ -288,7 +288,7 @@ impl<'f> Hider<'f> {
             frame,
             refiner,
             pieces,
-            filter,
+            film,
             margin,
             culled,
             split_ns,
@@ -317,7 +317,7 @@ pub(crate) fn render(
         frame,
         refiner,
         mut pieces,
-        filter,
+        film,
         margin,
         culled,
         split_ns,
@@ -352,7 +352,7 @@ pub(crate) fn render(
     // again exactly the buckets whose lists changed, until no new grid overflows. Each pass
     // shades a deterministic set of grids, so the image does not depend on the thread count,
     // and it equals the image a large enough bound gives (the same pieces, diced the same).
-    let mut buckets: Vec<(Vec<[f32; 4]>, Vec<f32>)> = vec![Default::default(); nbx * nby];
+    let mut buckets: Vec<PixelBlock> = vec![Default::default(); nbx * nby];
     let mut todo: Vec<usize> = (0..nbx * nby).collect();
     let mut overflows: Vec<Option<Overflow>> = vec![None; pieces.len()];
     let mut rerendered = 0usize;
@@ -366,7 +366,7 @@ pub(crate) fn render(
             }
         }
         let grids: Vec<GridSlot> = overlaps.into_iter().map(GridSlot::new).collect();
-        let out: Vec<(Vec<[f32; 4]>, Vec<f32>)> = todo
+        let out: Vec<PixelBlock> = todo
             .par_iter()
             .map(|&b| {
                 let (bx, by) = ((b % nbx) as u32, (b / nbx) as u32);
@@ -381,7 +381,7 @@ pub(crate) fn render(
                     &grids,
                     &lists[b],
                     [px0, px1, py0, py1],
-                    &filter,
+                    &film,
                     spp,
                     frame_no,
                     blurred.then_some(lens.as_ref()),
@@ -459,29 +459,7 @@ pub(crate) fn render(
     }
     warnings.extend(overflow_warnings(frame, &pieces, &overflows, rerendered));
 
-    let mut rgba = vec![0.0f32; (width * height * 4) as usize];
-    let mut z = vec![f32::MAX; (width * height) as usize];
-    for (b, (c, d)) in buckets.into_iter().enumerate() {
-        let (bx, by) = ((b % nbx) as u32, (b / nbx) as u32);
-        let px0 = bx * bw;
-        let py0 = by * bh;
-        let bwid = (px0 + bw).min(width) - px0;
-        for (k, (pc, pz)) in c.iter().zip(&d).enumerate() {
-            let (x, y) = (px0 + k as u32 % bwid, py0 + k as u32 / bwid);
-            let o = (y * width + x) as usize;
-            rgba[o * 4..o * 4 + 4].copy_from_slice(pc);
-            z[o] = *pz;
-        }
-    }
-    // Exposure (RI Spec 3.2 `RiExposure`): c' = (gain·c)^(1/gamma) on colour, not alpha.
-    let (gain, gamma) = opts.exposure;
-    if gain != 1.0 || gamma != 1.0 {
-        for px in rgba.chunks_exact_mut(4) {
-            for c in &mut px[..3] {
-                *c = (*c * gain).max(0.0).powf(1.0 / gamma);
-            }
-        }
-    }
+    let (rgba, z) = film.print(cam.crop, buckets);
     let stats = Stats {
         primitives: frame.primitives.len() as u64,
         pieces: pieces.len() as u64,
@@ -818,14 +796,14 @@ fn render_bucket(
     grids: &[GridSlot],
     list: &[usize],
     [px0, px1, py0, py1]: [u32; 4],
-    filter: &PixelFilter,
+    film: &Film,
     spp: [u32; 2],
     frame_no: i32,
     blur: Option<Option<&Lens>>,
     counters: &Counters,
-) -> (Vec<[f32; 4]>, Vec<f32>) {
+) -> PixelBlock {
     let opts = &frame.options;
-    let (rx, ry) = filter.radius();
+    let (rx, ry) = film.filter.radius();
     // Sample region: every pixel whose samples reach this bucket's pixel centres.
     let sx0 = (px0 as f32 + 0.5 - rx).floor() as i32;
     let sx1 = (px1 as f32 - 0.5 + rx).floor() as i32 + 1;
@@ -948,7 +926,7 @@ fn render_bucket(
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();
     let solids = SolidResolver::new(&frame.solids);
-    let composited: Vec<([f32; 4], f32, f32)> = lists
+    let composited: Vec<Composited> = lists
         .iter_mut()
         .zip(&opaque_z)
         .map(|(l, oz)| {
@@ -979,67 +957,22 @@ fn render_bucket(
             }
             let z1 = l.first().map_or(f32::MAX, |v| v.z);
             let z2 = l.get(1).map_or(z1, |v| v.z);
-            ([c.x, c.y, c.z, alpha], z1, 0.5 * (z1 + z2))
+            Composited {
+                rgba: [c.x, c.y, c.z, alpha],
+                z: z1,
+                z_mid: 0.5 * (z1 + z2),
+            }
         })
         .collect();
-    let bw = (px1 - px0) as usize;
-    let bh = (py1 - py0) as usize;
-    let mut color = Vec::with_capacity(bw * bh);
-    let mut depth = Vec::with_capacity(bw * bh);
-    for y in py0..py1 {
-        for x in px0..px1 {
-            let (cxp, cyp) = (x as f32 + 0.5, y as f32 + 0.5);
-            let mut acc = [0.0f32; 4];
-            let mut wsum = 0.0f32;
-            let qx0 = ((cxp - rx).floor() as i32).max(sx0);
-            let qx1 = ((cxp + rx).floor() as i32).min(sx1 - 1);
-            let qy0 = ((cyp - ry).floor() as i32).max(sy0);
-            let qy1 = ((cyp + ry).floor() as i32).min(sy1 - 1);
-            for qy in qy0..=qy1 {
-                for qx in qx0..=qx1 {
-                    let base = (((qy - sy0) as usize) * sw + (qx - sx0) as usize) * n_per;
-                    for s in base..base + n_per {
-                        let (sxp, syp) = pos[s];
-                        let w = filter.weight(sxp - cxp, syp - cyp);
-                        if w != 0.0 {
-                            wsum += w;
-                            for (a, v) in acc.iter_mut().zip(composited[s].0) {
-                                *a += w * v;
-                            }
-                        }
-                    }
-                }
-            }
-            if wsum != 0.0 {
-                acc = acc.map(|v| v / wsum);
-            }
-            color.push(acc);
-            let base = (((y as i32 - sy0) as usize) * sw + (x as i32 - sx0) as usize) * n_per;
-            let own = &composited[base..base + n_per];
-            let zs = own.iter().map(|c| {
-                if opts.depth_filter == DepthFilter::Midpoint {
-                    c.2
-                } else {
-                    c.1
-                }
-            });
-            let d = match opts.depth_filter {
-                DepthFilter::Min | DepthFilter::Midpoint => zs.fold(f32::MAX, f32::min),
-                DepthFilter::Max => zs.fold(f32::MIN, f32::max),
-                DepthFilter::Average => {
-                    let hits: Vec<f32> = zs.filter(|&z| z < f32::MAX).collect();
-                    if hits.is_empty() {
-                        f32::MAX
-                    } else {
-                        hits.iter().sum::<f32>() / hits.len() as f32
-                    }
-                }
-            };
-            depth.push(d);
-        }
-    }
+    let region = SampleRegion {
+        origin: [sx0, sy0],
+        size: [sw, sh],
+        per_pixel: n_per,
+        pos: &pos,
+    };
+    let block = film.develop([px0, px1, py0, py1], &region, &composited);
     counters.filter_ns.fetch_add(ns(t), Relaxed);
-    (color, depth)
+    block
 }
 
 #[allow(clippy::too_many_arguments)]

@@ -8,6 +8,7 @@
 #![forbid(unsafe_code)]
 
 mod csg;
+mod film;
 pub mod filter;
 mod hider;
 mod lens;
@@ -16,6 +17,7 @@ mod refine;
 pub mod sampling;
 mod shader;
 
+pub use film::PixelBlock;
 pub use filter::PixelFilter;
 pub use hider::Hider;
 pub use shader::{GridShader, Shaded};
