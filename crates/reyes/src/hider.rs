@@ -2,11 +2,11 @@
 //! shaded once (by whichever bucket needs them first); micropolygons sampled into visible-point
 //! lists; lists composited front to back; pixel filter; exposure.
 use crate::csg::{SolidResolver, NO_SOLID};
-use crate::film::{Composited, Film, PixelBlock, SampleRegion};
+use crate::film::{Composited, Film, PixelBlock};
 use crate::lens::Lens;
-use crate::motion::{sample_moving_grid, GridMotion, SampleTarget};
+use crate::motion::{sample_moving_grid, GridMotion};
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
-use crate::sampling::{sample_position, sample_time_lens};
+use crate::sample_buffer::{SampleBuffer, SampleSetup};
 use crate::shader::GridShader;
 use crate::{Rendered, Stats};
 use glam::Vec3;
@@ -21,7 +21,7 @@ pub(crate) struct ShadedGrid {
     pub(crate) nu: usize,
     pub(crate) nv: usize,
     /// Raster x, y and camera z per vertex.
-    pos: Vec<Vec3>,
+    pub(crate) pos: Vec<Vec3>,
     ci: Vec<Vec3>,
     oi: Vec<Vec3>,
     /// Per micropolygon: culled as a back face (Sides 1).
@@ -34,13 +34,47 @@ pub(crate) struct ShadedGrid {
     /// Outward reach (raster pixels) of each border segment, for the rows `j = 0`,
     /// `j = nv−1` and the columns `i = 0`, `i = nu−1`: see [`seam_reach`].
     pub(crate) seam: [Vec<f64>; 4],
-    matte: bool,
+    pub(crate) matte: bool,
     smooth: bool,
     /// Camera-space positions per motion key when the grid moves or depth of field is on
     /// (sampled by [`crate::motion`] instead of [`sample_triangle`]).
     motion: Option<GridMotion>,
     /// Set when displacement moved the grid farther than its `displacementbound`.
     overflow: Option<Overflow>,
+}
+
+impl ShadedGrid {
+    /// How far (raster pixels) the edges of micropolygon `(i, j)` reach outward, as
+    /// `[bottom, right, top, left]`: a grid border's seam reach, 0 inside the grid.
+    pub(crate) fn border_reach(&self, i: usize, j: usize) -> [f64; 4] {
+        let bottom = if j == 0 { self.seam[0][i] } else { 0.0 };
+        let top = if j + 2 == self.nv {
+            self.seam[1][i]
+        } else {
+            0.0
+        };
+        let left = if i == 0 { self.seam[2][j] } else { 0.0 };
+        let right = if i + 2 == self.nu {
+            self.seam[3][j]
+        } else {
+            0.0
+        };
+        [bottom, right, top, left]
+    }
+
+    /// Colour and opacity at barycentric weights `w` of grid vertices `idx`, or at the
+    /// micropolygon's `first` vertex when shading is flat.
+    pub(crate) fn shaded_at(&self, idx: [usize; 3], w: [f64; 3], first: usize) -> (Vec3, Vec3) {
+        if self.smooth {
+            let [a, b, cc] = w.map(|x| x as f32);
+            (
+                self.ci[idx[0]] * a + self.ci[idx[1]] * b + self.ci[idx[2]] * cc,
+                self.oi[idx[0]] * a + self.oi[idx[1]] * b + self.oi[idx[2]] * cc,
+            )
+        } else {
+            (self.ci[first], self.oi[first])
+        }
+    }
 }
 
 /// Where a displaced grid really is, when displacement moved it farther than the piece's
@@ -156,14 +190,14 @@ impl GridSlot {
 
 #[derive(Clone, Copy)]
 pub(crate) struct VisiblePoint {
-    z: f32,
-    order: u64,
-    c: Vec3,
-    o: Vec3,
-    matte: bool,
+    pub(crate) z: f32,
+    pub(crate) order: u64,
+    pub(crate) c: Vec3,
+    pub(crate) o: Vec3,
+    pub(crate) matte: bool,
     /// For CSG (see `csg.rs`): an entering hit. The primitive solid is found through the
     /// piece index in `order`, which keeps the point at 40 bytes, as without CSG.
-    entering: bool,
+    pub(crate) entering: bool,
 }
 
 const _: () = assert!(std::mem::size_of::<VisiblePoint>() <= 40);
@@ -343,9 +377,16 @@ pub(crate) fn render(
     let counters = Counters::default();
     let done = AtomicUsize::new(0);
     let total = AtomicUsize::new(nbx * nby);
-    let frame_no = frame.number.unwrap_or(0);
-    let spp = opts.pixel_samples;
-    let blurred = lens.is_some() || pieces.iter().any(|p| !p.later.is_empty());
+    let setup = SampleSetup {
+        spp: opts.pixel_samples,
+        frame: frame.number.unwrap_or(0),
+        jitter: opts.jitter,
+        // Times and lens positions, only when something in the frame moves or a lens blurs.
+        blur: lens.is_some() || pieces.iter().any(|p| !p.later.is_empty()),
+        shutter: opts.shutter,
+        near_far: [cam.near as f32, cam.far as f32],
+        perspective: cam.is_perspective(),
+    };
 
     // Render every bucket; then, if a displaced grid turned out larger than its
     // displacementbound, grow its piece to the measured bound, re-list the buckets and render
@@ -382,9 +423,8 @@ pub(crate) fn render(
                     &lists[b],
                     [px0, px1, py0, py1],
                     &film,
-                    spp,
-                    frame_no,
-                    blurred.then_some(lens.as_ref()),
+                    &setup,
+                    lens.as_ref(),
                     &counters,
                 );
                 let n = done.fetch_add(1, Relaxed) + 1;
@@ -738,56 +778,6 @@ fn grid_motion(
     }
 }
 
-/// Records one sample hit of a micropolygon (still or moving): colour and opacity interpolated at the
-/// barycentric weights `w` of grid vertices `idx` (or the micropolygon's first vertex when
-/// shading is flat); `ccw`: the triangle's raster winding at the sample (CSG entering test).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn deposit(
-    g: &ShadedGrid,
-    idx: [usize; 3],
-    w: [f64; 3],
-    first: usize,
-    z: f32,
-    order: u64,
-    ccw: bool,
-    s: usize,
-    lists: &mut [Vec<VisiblePoint>],
-    opaque_z: &mut [f32],
-) {
-    let (c, o) = if g.smooth {
-        let [a, b, cc] = w.map(|x| x as f32);
-        (
-            g.ci[idx[0]] * a + g.ci[idx[1]] * b + g.ci[idx[2]] * cc,
-            g.oi[idx[0]] * a + g.oi[idx[1]] * b + g.oi[idx[2]] * cc,
-        )
-    } else {
-        (g.ci[first], g.oi[first])
-    };
-    lists[s].push(VisiblePoint {
-        z,
-        order,
-        c,
-        o,
-        matte: g.matte,
-        entering: ccw == g.ccw_enters,
-    });
-    // A solid's surface may yet be carved away, so it hides nothing behind it.
-    if o.min_element() >= 1.0 && g.solid == NO_SOLID {
-        opaque_z[s] = z;
-    }
-}
-
-/// Edge test with a top-left tie rule so a sample on a shared edge counts once; a grid border
-/// edge instead accepts samples up to `r` pixels outside it.
-#[inline]
-pub(crate) fn edge(a: glam::DVec3, b: glam::DVec3, r: f64, x: f64, y: f64) -> bool {
-    let e = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
-    if r > 0.0 {
-        return e > -r * (b.x - a.x).hypot(b.y - a.y);
-    }
-    e > 0.0 || (e == 0.0 && (b.y < a.y || (b.y == a.y && b.x > a.x)))
-}
-
 #[allow(clippy::too_many_arguments)]
 fn render_bucket(
     frame: &Frame,
@@ -795,60 +785,18 @@ fn render_bucket(
     pieces: &[Piece],
     grids: &[GridSlot],
     list: &[usize],
-    [px0, px1, py0, py1]: [u32; 4],
+    rect: [u32; 4],
     film: &Film,
-    spp: [u32; 2],
-    frame_no: i32,
-    blur: Option<Option<&Lens>>,
+    setup: &SampleSetup,
+    lens: Option<&Lens>,
     counters: &Counters,
 ) -> PixelBlock {
-    let opts = &frame.options;
-    let (rx, ry) = film.filter.radius();
-    // Sample region: every pixel whose samples reach this bucket's pixel centres.
-    let sx0 = (px0 as f32 + 0.5 - rx).floor() as i32;
-    let sx1 = (px1 as f32 - 0.5 + rx).floor() as i32 + 1;
-    let sy0 = (py0 as f32 + 0.5 - ry).floor() as i32;
-    let sy1 = (py1 as f32 - 0.5 + ry).floor() as i32 + 1;
-    let (sw, sh) = ((sx1 - sx0) as usize, (sy1 - sy0) as usize);
-    let n_per = (spp[0] * spp[1]) as usize;
-    let mut pos = Vec::with_capacity(sw * sh * n_per);
-    for py in sy0..sy1 {
-        for px in sx0..sx1 {
-            for j in 0..spp[1] {
-                for i in 0..spp[0] {
-                    pos.push(sample_position(px, py, i, j, spp, frame_no, opts.jitter));
-                }
-            }
-        }
-    }
-    // Times and lens positions, only when something in the frame moves or a lens blurs.
-    let mut time_lens = Vec::new();
-    if blur.is_some() {
-        time_lens.reserve(pos.len());
-        for py in sy0..sy1 {
-            for px in sx0..sx1 {
-                sample_time_lens(
-                    px,
-                    py,
-                    spp,
-                    frame_no,
-                    opts.jitter,
-                    opts.shutter,
-                    &mut time_lens,
-                );
-            }
-        }
-    }
-    let mut lists: Vec<Vec<VisiblePoint>> = vec![Vec::new(); pos.len()];
-    let mut opaque_z = vec![f32::INFINITY; pos.len()];
-    let (near, far) = (frame.camera.near as f32, frame.camera.far as f32);
-    let persp = frame.camera.is_perspective();
+    let mut buf = SampleBuffer::new(rect, film.filter.radius(), setup);
     let t_sample = Instant::now();
     let mut shade_elapsed = 0u64;
     for &id in list {
         let piece = &pieces[id];
-        let max_opaque = opaque_z.iter().copied().fold(0.0f32, f32::max);
-        if piece.zmin > max_opaque {
+        if piece.zmin > buf.max_opaque_z() {
             counters.occluded.fetch_add(1, Relaxed);
             continue;
         }
@@ -856,65 +804,11 @@ fn render_bucket(
         let grid = grids[id].get(|| dice_and_shade(frame, shader, piece, counters));
         shade_elapsed += ns(t);
         let Some(g) = grid.as_deref() else { continue };
-        if let (Some(m), Some(lens)) = (&g.motion, blur) {
-            let mut target = SampleTarget {
-                pos: &pos,
-                time_lens: &time_lens,
-                lists: &mut lists,
-                opaque_z: &mut opaque_z,
-                origin: [sx0, sy0],
-                size: [sw, sh],
-                n_per,
-                near_far: [near, far],
-                shutter: opts.shutter,
-            };
-            let hits = sample_moving_grid(g, m, id, &frame.camera, lens, &mut target);
-            counters.samples.fetch_add(hits, Relaxed);
-            continue;
-        }
-        for j in 0..g.nv - 1 {
-            for i in 0..g.nu - 1 {
-                let m = j * (g.nu - 1) + i;
-                if g.backface[m] {
-                    continue;
-                }
-                let a = j * g.nu + i;
-                let quad = [a, a + 1, a + g.nu + 1, a + g.nu];
-                if quad.iter().any(|&k| g.pos[k].z.is_nan()) {
-                    continue;
-                }
-                let order = ((id as u64) << 32) | m as u64;
-                // Border edges of this micropolygon reach outward (see `seam_reach`); edges
-                // inside the grid use the exact tie rule.
-                let bottom = if j == 0 { g.seam[0][i] } else { 0.0 };
-                let top = if j + 2 == g.nv { g.seam[1][i] } else { 0.0 };
-                let left = if i == 0 { g.seam[2][j] } else { 0.0 };
-                let right = if i + 2 == g.nu { g.seam[3][j] } else { 0.0 };
-                for (tri, reach) in [
-                    ([quad[0], quad[1], quad[2]], [bottom, right, 0.0]),
-                    ([quad[0], quad[2], quad[3]], [0.0, top, left]),
-                ] {
-                    sample_triangle(
-                        g,
-                        tri,
-                        reach,
-                        a,
-                        order,
-                        &pos,
-                        &mut lists,
-                        &mut opaque_z,
-                        [sx0, sy0],
-                        sw,
-                        sh,
-                        spp,
-                        n_per,
-                        [near, far],
-                        persp,
-                        counters,
-                    );
-                }
-            }
-        }
+        let hits = match &g.motion {
+            Some(m) if setup.blur => sample_moving_grid(g, m, id, &frame.camera, lens, &mut buf),
+            _ => buf.sample_still_grid(g, id),
+        };
+        counters.samples.fetch_add(hits, Relaxed);
     }
     counters
         .sample_ns
@@ -922,13 +816,13 @@ fn render_bucket(
     for &id in list {
         grids[id].release();
     }
-
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();
     let solids = SolidResolver::new(&frame.solids);
-    let composited: Vec<Composited> = lists
+    let composited: Vec<Composited> = buf
+        .lists
         .iter_mut()
-        .zip(&opaque_z)
+        .zip(&buf.opaque_z)
         .map(|(l, oz)| {
             l.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.order.cmp(&b.order)));
             if let Some(s) = &solids {
@@ -964,110 +858,7 @@ fn render_bucket(
             }
         })
         .collect();
-    let region = SampleRegion {
-        origin: [sx0, sy0],
-        size: [sw, sh],
-        per_pixel: n_per,
-        pos: &pos,
-    };
-    let block = film.develop([px0, px1, py0, py1], &region, &composited);
+    let block = film.develop(rect, &buf.region(), &composited);
     counters.filter_ns.fetch_add(ns(t), Relaxed);
     block
-}
-
-#[allow(clippy::too_many_arguments)]
-fn sample_triangle(
-    g: &ShadedGrid,
-    tri: [usize; 3],
-    mut reach: [f64; 3],
-    first: usize,
-    order: u64,
-    pos: &[(f32, f32)],
-    lists: &mut [Vec<VisiblePoint>],
-    opaque_z: &mut [f32],
-    [sx0, sy0]: [i32; 2],
-    sw: usize,
-    sh: usize,
-    spp: [u32; 2],
-    n_per: usize,
-    [near, far]: [f32; 2],
-    persp: bool,
-    counters: &Counters,
-) {
-    let mut v = tri.map(|k| g.pos[k]);
-    let mut idx = tri;
-    let area = |v: &[Vec3; 3]| {
-        let (a, b, c) = (v[0].as_dvec3(), v[1].as_dvec3(), v[2].as_dvec3());
-        (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
-    };
-    let mut ar = area(&v);
-    if ar == 0.0 || !ar.is_finite() {
-        return;
-    }
-    let ccw = ar > 0.0;
-    if ar < 0.0 {
-        v.swap(1, 2);
-        idx.swap(1, 2);
-        // Edges v0→v1, v1→v2, v2→v0 are now the old v2→v0, v1→v2 (reversed), v0→v1.
-        reach = [reach[2], reach[1], reach[0]];
-        ar = -ar;
-    }
-    let grow = reach.iter().copied().fold(0.0f64, f64::max) as f32;
-    let xmin = v.iter().map(|p| p.x).fold(f32::INFINITY, f32::min) - grow;
-    let xmax = v.iter().map(|p| p.x).fold(f32::NEG_INFINITY, f32::max) + grow;
-    let ymin = v.iter().map(|p| p.y).fold(f32::INFINITY, f32::min) - grow;
-    let ymax = v.iter().map(|p| p.y).fold(f32::NEG_INFINITY, f32::max) + grow;
-    let qx0 = (xmin.floor() as i32 - sx0).max(0);
-    let qx1 = (xmax.floor() as i32 - sx0).min(sw as i32 - 1);
-    let qy0 = (ymin.floor() as i32 - sy0).max(0);
-    let qy1 = (ymax.floor() as i32 - sy0).min(sh as i32 - 1);
-    if qx0 > qx1 || qy0 > qy1 {
-        return;
-    }
-    let _ = spp;
-    let vd = v.map(|p| p.as_dvec3());
-    let inv_z = vd.map(|p| 1.0 / p.z);
-    for qy in qy0..=qy1 {
-        for qx in qx0..=qx1 {
-            let base = (qy as usize * sw + qx as usize) * n_per;
-            for s in base..base + n_per {
-                let (x, y) = (f64::from(pos[s].0), f64::from(pos[s].1));
-                if !(edge(vd[0], vd[1], reach[0], x, y)
-                    && edge(vd[1], vd[2], reach[1], x, y)
-                    && edge(vd[2], vd[0], reach[2], x, y))
-                {
-                    continue;
-                }
-                let w0 = ((vd[2].x - vd[1].x) * (y - vd[1].y)
-                    - (vd[2].y - vd[1].y) * (x - vd[1].x))
-                    / ar;
-                let w1 = ((vd[0].x - vd[2].x) * (y - vd[2].y)
-                    - (vd[0].y - vd[2].y) * (x - vd[2].x))
-                    / ar;
-                let w2 = 1.0 - w0 - w1;
-                // Depth is linear in screen space for ortho, its reciprocal for perspective.
-                let z = if persp {
-                    (1.0 / (w0 * inv_z[0] + w1 * inv_z[1] + w2 * inv_z[2])) as f32
-                } else {
-                    (w0 * vd[0].z + w1 * vd[1].z + w2 * vd[2].z) as f32
-                };
-                if z < near || z > far || z >= opaque_z[s] {
-                    continue;
-                }
-                counters.samples.fetch_add(1, Relaxed);
-                deposit(
-                    g,
-                    idx,
-                    [w0, w1, w2],
-                    first,
-                    z,
-                    order,
-                    ccw,
-                    s,
-                    lists,
-                    opaque_z,
-                );
-            }
-        }
-    }
 }

@@ -14,6 +14,7 @@ mod hider;
 mod lens;
 mod motion;
 mod refine;
+mod sample_buffer;
 pub mod sampling;
 mod shader;
 

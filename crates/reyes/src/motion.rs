@@ -7,8 +7,9 @@
 //! whole path) and grown by the circle of confusion over its depth range; every sample in that
 //! box is then tested against the micropolygon moved to the sample's own time and lens
 //! position, with the same edge rules as a still micropolygon.
-use crate::hider::{deposit, edge, ShadedGrid, VisiblePoint};
+use crate::hider::ShadedGrid;
 use crate::lens::Lens;
+use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
 use glam::{DVec3, Vec3};
 use illume_ri::motion::segment;
 use illume_ri::Camera;
@@ -28,21 +29,6 @@ impl GridMotion {
         let b = self.keys[k + 1][v].as_dvec3();
         a + (b - a) * w
     }
-}
-
-/// The bucket's samples and where visible points go.
-pub(crate) struct SampleTarget<'s> {
-    pub pos: &'s [(f32, f32)],
-    /// Time and lens position per sample.
-    pub time_lens: &'s [(f32, (f32, f32))],
-    pub lists: &'s mut [Vec<VisiblePoint>],
-    pub opaque_z: &'s mut [f32],
-    /// Sample region origin and size in pixels, samples per pixel.
-    pub origin: [i32; 2],
-    pub size: [usize; 2],
-    pub n_per: usize,
-    pub near_far: [f32; 2],
-    pub shutter: [f32; 2],
 }
 
 /// Most shutter sub-intervals a micropolygon's path is cut into.
@@ -107,7 +93,7 @@ pub(crate) fn sample_moving_grid(
     id: usize,
     cam: &Camera,
     lens: Option<&Lens>,
-    out: &mut SampleTarget,
+    out: &mut SampleBuffer,
 ) -> u64 {
     let persp = cam.is_perspective();
     let (nu, nv) = (g.nu, g.nv);
@@ -141,10 +127,8 @@ pub(crate) fn sample_moving_grid(
                     (z0, z1) = (z0.min(q.z), z1.max(q.z));
                 }
             }
-            let bottom = if j == 0 { g.seam[0][i] } else { 0.0 };
-            let top = if j + 2 == nv { g.seam[1][i] } else { 0.0 };
-            let left = if i == 0 { g.seam[2][j] } else { 0.0 };
-            let right = if i + 2 == nu { g.seam[3][j] } else { 0.0 };
+            let reach = g.border_reach(i, j);
+            let [bottom, right, top, left] = reach;
             let grow = bottom.max(top).max(left).max(right);
             let (gx, gy) = match lens {
                 Some(l) => l.blur_radius(z0, z1),
@@ -227,15 +211,16 @@ pub(crate) fn sample_moving_grid(
                             }
                             *vk = q;
                         }
-                        for (tri, reach) in [
-                            ([0, 1, 2], [bottom, right, 0.0]),
-                            ([0, 2, 3], [0.0, top, left]),
-                        ] {
-                            let Some((w, idx, ccw)) = hit(tri.map(|k| v[k]), tri, reach, x, y)
-                            else {
+                        for (tri, reach) in split_quad([0, 1, 2, 3], reach) {
+                            let Some(t) = RasterTriangle::new(tri.map(|k| v[k]), tri, reach) else {
                                 continue;
                             };
-                            let vd = idx.map(|k| v[k]);
+                            let Some(w) = t.covers(x, y) else {
+                                continue;
+                            };
+                            // Divided per sample (this triangle exists for one sample only);
+                            // a still triangle multiplies by reciprocals it computes once.
+                            let vd = t.v;
                             let z = if persp {
                                 (1.0 / (w[0] / vd[0].z + w[1] / vd[1].z + w[2] / vd[2].z)) as f32
                             } else {
@@ -245,8 +230,19 @@ pub(crate) fn sample_moving_grid(
                             if z < near || z > far || z >= out.opaque_z[s] {
                                 continue;
                             }
-                            let idx = idx.map(|k| quad[k]);
-                            deposit(g, idx, w, a, z, order, ccw, s, out.lists, out.opaque_z);
+                            let (idx, ccw) = (t.idx.map(|k| quad[k]), t.ccw);
+                            out.deposit(
+                                g,
+                                s,
+                                Hit {
+                                    idx,
+                                    w,
+                                    first: a,
+                                    z,
+                                    order,
+                                    ccw,
+                                },
+                            );
                             hits += 1;
                         }
                     }
@@ -255,39 +251,4 @@ pub(crate) fn sample_moving_grid(
         }
     }
     hits
-}
-
-/// Whether raster point `(x, y)` lies in the triangle `v` (either winding): barycentric
-/// weights, the vertex order they belong to (`tri` reordered counter-clockwise) and whether
-/// `v` was wound counter-clockwise (for CSG's entering test).
-fn hit(
-    mut v: [DVec3; 3],
-    mut idx: [usize; 3],
-    mut reach: [f64; 3],
-    x: f64,
-    y: f64,
-) -> Option<([f64; 3], [usize; 3], bool)> {
-    let area = |v: &[DVec3; 3]| {
-        (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x)
-    };
-    let mut ar = area(&v);
-    if ar == 0.0 || !ar.is_finite() {
-        return None;
-    }
-    let ccw = ar > 0.0;
-    if ar < 0.0 {
-        v.swap(1, 2);
-        idx.swap(1, 2);
-        reach = [reach[2], reach[1], reach[0]];
-        ar = -ar;
-    }
-    if !(edge(v[0], v[1], reach[0], x, y)
-        && edge(v[1], v[2], reach[1], x, y)
-        && edge(v[2], v[0], reach[2], x, y))
-    {
-        return None;
-    }
-    let w0 = ((v[2].x - v[1].x) * (y - v[1].y) - (v[2].y - v[1].y) * (x - v[1].x)) / ar;
-    let w1 = ((v[0].x - v[2].x) * (y - v[2].y) - (v[0].y - v[2].y) * (x - v[2].x)) / ar;
-    Some(([w0, w1, 1.0 - w0 - w1], idx, ccw))
 }
