@@ -7,7 +7,10 @@
 //! writing and the frame loop live in the driver (`illume-render`).
 #![forbid(unsafe_code)]
 
+mod bucket;
 mod csg;
+mod dice;
+mod displacement_bound;
 mod film;
 pub mod filter;
 mod hider;
@@ -17,6 +20,7 @@ mod refine;
 mod sample_buffer;
 pub mod sampling;
 mod shader;
+mod visible;
 
 pub use film::PixelBlock;
 pub use filter::PixelFilter;

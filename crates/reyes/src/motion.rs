@@ -7,7 +7,7 @@
 //! whole path) and grown by the circle of confusion over its depth range; every sample in that
 //! box is then tested against the micropolygon moved to the sample's own time and lens
 //! position, with the same edge rules as a still micropolygon.
-use crate::hider::ShadedGrid;
+use crate::dice::ShadedGrid;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
 use glam::{DVec3, Vec3};

@@ -7,10 +7,10 @@
 //! (and time and lens position, when something blurs) is a hash of its pixel, index and frame
 //! only, so neighbouring buckets agree on the samples they share.
 use crate::csg::NO_SOLID;
+use crate::dice::ShadedGrid;
 use crate::film::SampleRegion;
-use crate::hider::ShadedGrid;
-use crate::hider::VisiblePoint;
 use crate::sampling::{sample_position, sample_time_lens};
+use crate::visible::VisiblePoint;
 use glam::DVec3;
 
 /// How a bucket's samples are placed.
