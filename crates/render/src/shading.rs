@@ -99,6 +99,51 @@ fn projections(frame: &Frame) -> (DMat4, DMat4, DMat4) {
     )
 }
 
+/// Binds every built-in surface the frame's primitives name (keyed by the address of their
+/// shared `Arc<Shader>`); `.sl` surfaces are bound by [`SlShaders`]. An unknown or bad surface
+/// warns and falls back to `default_surface`; `Surface "null"` binds to `None`.
+fn bind_surfaces(
+    frame: &Frame,
+    sl: &SlShaders,
+    default_surface: &Arc<Surface>,
+    diags: &mut Vec<Diagnostic>,
+) -> HashMap<usize, BoundSurface> {
+    let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
+    for prim in &frame.primitives {
+        let Some(shader) = prim.attributes.surface.as_ref() else {
+            continue;
+        };
+        let key = Arc::as_ptr(shader) as usize;
+        if surfaces.contains_key(&key) || sl.has_surface(shader) {
+            continue;
+        }
+        let bound = if shader.name == "null" {
+            None
+        } else {
+            match illume_shade::surface(&shader.name, &shader.params) {
+                Ok((s, warnings)) => {
+                    diags.extend(
+                        warnings
+                            .into_iter()
+                            .map(|w| diagnostic(shader, "Surface", w)),
+                    );
+                    Some(Arc::new(s))
+                }
+                Err(e) => {
+                    diags.push(diagnostic(
+                        shader,
+                        "Surface",
+                        format!("{e}; using defaultsurface"),
+                    ));
+                    Some(default_surface.clone())
+                }
+            }
+        };
+        surfaces.insert(key, bound);
+    }
+    surfaces
+}
+
 impl<'a> FrameShading<'a> {
     /// Binds every surface and light of the frame; problems come back as warnings with the
     /// span of the `Surface`/`LightSource` request.
@@ -109,39 +154,7 @@ impl<'a> FrameShading<'a> {
         let mut diags = Vec::new();
         let sl = SlShaders::bind(frame, &mut diags);
         let default_surface = Arc::new(Surface::default_surface());
-        let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
-        for prim in &frame.primitives {
-            let Some(shader) = prim.attributes.surface.as_ref() else {
-                continue;
-            };
-            let key = Arc::as_ptr(shader) as usize;
-            if surfaces.contains_key(&key) || sl.has_surface(shader) {
-                continue;
-            }
-            let bound = if shader.name == "null" {
-                None
-            } else {
-                match illume_shade::surface(&shader.name, &shader.params) {
-                    Ok((s, warnings)) => {
-                        diags.extend(
-                            warnings
-                                .into_iter()
-                                .map(|w| diagnostic(shader, "Surface", w)),
-                        );
-                        Some(Arc::new(s))
-                    }
-                    Err(e) => {
-                        diags.push(diagnostic(
-                            shader,
-                            "Surface",
-                            format!("{e}; using defaultsurface"),
-                        ));
-                        Some(default_surface.clone())
-                    }
-                }
-            };
-            surfaces.insert(key, bound);
-        }
+        let surfaces = bind_surfaces(frame, &sl, &default_surface, &mut diags);
         let mut displacements: HashMap<usize, BoundDisplacement> = HashMap::new();
         for prim in &frame.primitives {
             let Some(shader) = prim.attributes.displacement.as_ref() else {

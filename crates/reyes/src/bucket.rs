@@ -43,7 +43,7 @@ impl BucketLayout {
     }
 
     /// The number of buckets.
-    pub fn len(&self) -> usize {
+    pub fn bucket_count(&self) -> usize {
         self.count[0] * self.count[1]
     }
 
@@ -195,7 +195,7 @@ mod tests {
             let layout = BucketLayout::new(crop, size, 1.0);
             let [cx0, cx1, cy0, cy1] = crop;
             let mut hits = vec![0u32; ((cx1 - cx0) * (cy1 - cy0)) as usize];
-            for b in 0..layout.len() {
+            for b in 0..layout.bucket_count() {
                 let [x0, x1, y0, y1] = layout.rect(b);
                 for y in y0..y1 {
                     for x in x0..x1 {

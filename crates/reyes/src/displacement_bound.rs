@@ -37,8 +37,8 @@ pub(crate) fn render_until_bounded(
     mut pass: impl FnMut(&[Piece], &[Vec<usize>], &[usize], &[GridSlot]) -> Vec<PixelBlock>,
 ) -> (Vec<PixelBlock>, Vec<Diagnostic>) {
     let mut lists = layout.lists(pieces);
-    let mut buckets: Vec<PixelBlock> = vec![Default::default(); layout.len()];
-    let mut todo: Vec<usize> = (0..layout.len()).collect();
+    let mut buckets: Vec<PixelBlock> = vec![Default::default(); layout.bucket_count()];
+    let mut todo: Vec<usize> = (0..layout.bucket_count()).collect();
     let mut bounds = Measured::new(pieces);
     while !todo.is_empty() {
         let mut overlaps = vec![0usize; pieces.len()];
@@ -56,7 +56,7 @@ pub(crate) fn render_until_bounded(
             break;
         };
         let relisted = layout.lists(pieces);
-        todo = (0..layout.len())
+        todo = (0..layout.bucket_count())
             .filter(|&b| relisted[b] != lists[b] || relisted[b].iter().any(|&id| nearer[id]))
             .collect();
         lists = relisted;

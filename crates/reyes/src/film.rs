@@ -181,11 +181,12 @@ mod tests {
     use super::*;
 
     fn options(filter: &str, depth: DepthFilter, exposure: (f32, f32)) -> Options {
-        let mut o = Options::default();
-        o.filter = (filter.to_string(), 2.0, 2.0);
-        o.depth_filter = depth;
-        o.exposure = exposure;
-        o
+        Options {
+            filter: (filter.to_string(), 2.0, 2.0),
+            depth_filter: depth,
+            exposure,
+            ..Options::default()
+        }
     }
 
     /// A 4×4-pixel sample region at (−1, −1), 2 samples per pixel, with `f(s)` per sample.
