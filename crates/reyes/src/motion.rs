@@ -86,6 +86,41 @@ fn subframe_boxes(
     Some(boxes)
 }
 
+/// Cuts the shutter so each sub-interval moves micropolygon `quad` about 2 pixels (given its
+/// raster box `[x0, x1, y0, y1]` over every key): the number of sub-intervals and, when more
+/// than one, the micropolygon's box in each (see [`subframe_boxes`]).
+fn shutter_cut(
+    m: &GridMotion,
+    quad: &[usize; 4],
+    [x0, x1, y0, y1]: [f64; 4],
+    [open, close]: [f64; 2],
+    project: &impl Fn(DVec3) -> Option<DVec3>,
+) -> (usize, Option<Vec<[f64; 4]>>) {
+    let (w0, h0) = {
+        let v: Vec<DVec3> = quad
+            .iter()
+            .filter_map(|&k| project(m.keys[0][k].as_dvec3()))
+            .collect();
+        let f = |g: fn(&DVec3) -> f64| {
+            let xs = v.iter().map(g);
+            xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
+        };
+        (f(|q| q.x), f(|q| q.y))
+    };
+    let sweep = ((x1 - x0) - w0).max((y1 - y0) - h0).max(0.0);
+    let n_sub = if m.keys.len() > 1 && close > open {
+        ((sweep / 2.0).ceil() as usize).clamp(1, MAX_SUBFRAMES)
+    } else {
+        1
+    };
+    let sub = if n_sub > 1 {
+        subframe_boxes(m, quad, [open, close], n_sub, project)
+    } else {
+        None
+    };
+    (n_sub, sub)
+}
+
 /// Samples every micropolygon of a moving or lens-blurred grid; returns the samples hit.
 pub(crate) fn sample_moving_grid(
     g: &ShadedGrid,
@@ -164,30 +199,8 @@ fn sample_moving_micropolygon(
         return 0;
     }
     let order = ((id as u64) << 32) | mp as u64;
-    // Cut the shutter so each sub-interval moves the micropolygon about 2 pixels.
     let [open, close] = out.shutter.map(f64::from);
-    let (w0, h0) = {
-        let v: Vec<DVec3> = quad
-            .iter()
-            .filter_map(|&k| project(m.keys[0][k].as_dvec3()))
-            .collect();
-        let f = |g: fn(&DVec3) -> f64| {
-            let xs = v.iter().map(g);
-            xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
-        };
-        (f(|q| q.x), f(|q| q.y))
-    };
-    let sweep = ((x1 - x0) - w0).max((y1 - y0) - h0).max(0.0);
-    let n_sub = if m.keys.len() > 1 && close > open {
-        ((sweep / 2.0).ceil() as usize).clamp(1, MAX_SUBFRAMES)
-    } else {
-        1
-    };
-    let sub = if n_sub > 1 {
-        subframe_boxes(m, &quad, [open, close], n_sub, project)
-    } else {
-        None
-    };
+    let (n_sub, sub) = shutter_cut(m, &quad, [x0, x1, y0, y1], [open, close], project);
     let key_box = [x0, x1, y0, y1];
     let pad = grow + 1e-6;
     for qy in qy0..=qy1 {
