@@ -85,7 +85,8 @@ for rib in "$root"/rib/geometry.rib "$root"/rib/blobby.rib "$root"/rib/csg.rib \
 done
 
 # Pipelines: each runs in a copy of its directory (they read inputs such as sky.exr from the
-# working directory); the images shown, as pipeline:file.tif:gallery-name.png.
+# working directory, and texture/ reads textures/); the images shown, as
+# pipeline:file.tif:gallery-name.png.
 pipeline_images=(
   shadow:shadow_single.tif:pipeline_shadow.png
   envcube:px.tif:pipeline_envcube_px.png
@@ -100,14 +101,18 @@ pipeline_images=(
   flatmirror:flatmirror_single.tif:pipeline_flatmirror.png
   latlong:sky.exr:pipeline_latlong_sky.png
   latlong:latlong_single.tif:pipeline_latlong.png
+  texture:texture_single.tif:pipeline_texture.png
+  texture:card_single.tif:pipeline_texture_card.png
 )
 for p in "$root"/rib/pipelines/*/; do
   name="$(basename "$p")"
   # Only workflows with a single-RIB form (rib/pipelines/farm/ is the Slurm test scene).
   [ -f "$p${name}_single.rib" ] || continue
-  dir="$work/pipeline-$name"
+  # The repository's layout, so a pipeline can read the source images as ../../../textures/.
+  dir="$work/pipeline-$name/rib/pipelines/$name"
   mkdir -p "$dir"
   cp "$p"* "$dir"/
+  cp -r "$root/textures" "$work/pipeline-$name/"
   render_in "$dir" "${name}_single.rib" "$name" || continue
   for entry in "${pipeline_images[@]}"; do
     IFS=: read -r pipeline tif png <<<"$entry"

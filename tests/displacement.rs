@@ -257,15 +257,10 @@ fn a_world_bound_on_a_scaled_object_is_not_scaled() {
 /// dir, never the corpus).
 #[test]
 fn aqsis_disp_test_warns_once_and_renders_undisplaced() {
-    let Some(corpus) = support::corpus_dir() else {
-        eprintln!("SKIPPED: no RIB corpus (../shared/corpus or $ILLUME_CORPUS)");
-        return;
+    let Some(path) = illume_testenv::shared_file("corpus/aqsis2001/disp_test.rib") else {
+        return; // skipped loudly; a failure under CI=true
     };
-    let path = corpus.join("aqsis2001/disp_test.rib");
-    let Ok(rib) = std::fs::read_to_string(&path) else {
-        eprintln!("SKIPPED: {} not found", path.display());
-        return;
-    };
+    let rib = std::fs::read_to_string(&path).unwrap();
     let (r, diags) = render_rib(&rib);
     let named: Vec<_> = diags
         .iter()
@@ -287,19 +282,8 @@ fn aqsis_disp_test_warns_once_and_renders_undisplaced() {
     );
 
     // Through the binary when it is built (cargo build -p render) or named by $RENDER.
-    let bin = std::env::var_os("RENDER")
-        .map(std::path::PathBuf::from)
-        .or_else(|| {
-            let p = std::env::current_exe()
-                .ok()?
-                .parent()?
-                .parent()?
-                .join("render");
-            p.is_file().then_some(p)
-        });
-    let Some(bin) = bin else {
-        eprintln!("SKIPPED: render binary not built (cargo build -p render)");
-        return;
+    let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
+        return; // skipped loudly; a failure under CI=true
     };
     let dir = std::env::temp_dir().join(format!("illume-disp-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -5,22 +5,28 @@
 # MakeShadow per frame, kills one tile's render mid-run on its first attempt (it must be
 # requeued and retried), and checks every merged image is bit-identical (cmp) to a plain
 # `render` of the same RIB. Then deletes two tiles: `farm merge` must refuse and list them, and
-# a resubmission must render only those two. Daemons are stopped on any exit (trap).
+# a resubmission must render only those two. Also: a RIB with errors is refused before anything
+# is written, and a submit sbatch refuses (SLURM_CONF naming no file) leaves no job directory.
+# Daemons are stopped on any exit (trap). Skips without Slurm or root, except under CI=true.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
-bin=${ILLUME_BIN_DIR:-$repo/target/debug}
+bin=${ILLUME_BIN_DIR:-${CARGO_TARGET_DIR:-$repo/target}/debug}
 scene=$repo/rib/pipelines/farm/turntable.rib
 
-for tool in slurmctld slurmd munged sbatch squeue; do
-  if ! command -v "$tool" >/dev/null 2>&1; then
-    echo "farm ci: SKIPPED: $tool not found (apt-get install slurm-wlm munge)"
-    exit 0
+# Without Slurm or root the test cannot run: on a developer's machine that is a loud skip, but
+# under CI=true (what CI services set) a skip would make a green run that tested nothing.
+skip() {
+  if [ "${CI:-}" = true ]; then
+    echo "farm ci: FAILED: CI=true and the farm test cannot run: $1" >&2
+    exit 1
   fi
-done
-if [ "$(id -u)" != 0 ]; then
-  echo "farm ci: SKIPPED: the test cluster runs slurmctld/slurmd as root (SlurmUser=root); not root"
+  echo "farm ci: SKIPPED: $1"
   exit 0
-fi
+}
+for tool in slurmctld slurmd munged mungekey sbatch squeue scancel sinfo; do
+  command -v "$tool" >/dev/null 2>&1 || skip "$tool not found (apt-get install slurm-wlm munge)"
+done
+[ "$(id -u)" = 0 ] || skip "the test cluster runs slurmctld/slurmd as root (SlurmUser=root); not root"
 for exe in render farm; do
   [ -x "$bin/$exe" ] || { echo "farm ci: $bin/$exe missing: cargo build -p render -p farm" >&2; exit 2; }
 done
@@ -93,5 +99,20 @@ grep -q "0 pass task(s), 2 tile task(s)" "$work/resubmit.out"
 wait_jobs 120
 same_as_plain
 echo "farm ci: resubmission rendered only the 2 missing tiles; still bit-identical"
+
+# Fail fast: a scene with a RIB error is refused (exit 2), and a submit the real sbatch refuses
+# removes the job directory it made.
+printf 'WorldBegin\nSphere 1 -1 1\nWorldEnd\n' >"$work/bad.rib"
+set +e
+"$bin/farm" submit "$work/bad.rib" 2>"$work/bad.err"
+rc_bad=$?
+SLURM_CONF=$work/no-such.conf "$bin/farm" submit "$scene" --jobdir "$work/refused" 2>"$work/refused.err"
+rc_refused=$?
+set -e
+[ "$rc_bad" = 2 ] && grep -q "bad.rib:2:1: error: Sphere" "$work/bad.err" && [ ! -e "$work/bad.farm" ] \
+  || { echo "farm ci: a RIB with errors was not refused (exit $rc_bad):" >&2; cat "$work/bad.err" >&2; exit 1; }
+[ "$rc_refused" = 2 ] && grep -q "is not a file" "$work/refused.err" && [ ! -e "$work/refused" ] \
+  || { echo "farm ci: a refused sbatch left a job dir or no hint (exit $rc_refused):" >&2; cat "$work/refused.err" >&2; exit 1; }
+echo "farm ci: a RIB with errors and a refused sbatch both exit 2 and leave no job directory"
 echo "farm ci: passed in $(( $(date +%s) - t_start )) s"
 status=0

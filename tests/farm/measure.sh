@@ -6,7 +6,7 @@
 # Needs root, slurm-wlm and munge, and `cargo build --release -p render -p farm`.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
-bin=${ILLUME_BIN_DIR:-$repo/target/release}
+bin=${ILLUME_BIN_DIR:-${CARGO_TARGET_DIR:-$repo/target}/release}
 scene=$repo/rib/pipelines/farm/turntable.rib
 work=$(mktemp -d /tmp/illume-farm-measure.XXXXXX)
 trap '"$repo/tests/farm/slurm_down.sh" "$work/slurm"; rm -rf "$work"' EXIT

@@ -52,19 +52,13 @@ pub fn rib_in(pipeline: &str, file: &str, dir: &Path) -> String {
         .join("\"")
 }
 
-/// `render` and `txmake` next to this test's profile directory, or named by `$RENDER`/`$TXMAKE`.
+/// `render` and `txmake` next to this test's profile directory, or named by `$RENDER`/`$TXMAKE`;
+/// `None` when not built (skipped loudly; a failure under `CI=true`).
 pub fn binaries() -> Option<(PathBuf, PathBuf)> {
-    let profile_dir = std::env::current_exe()
-        .ok()
-        .and_then(|p| p.parent()?.parent().map(Path::to_path_buf));
-    let find = |var: &str, bin: &str| -> Option<PathBuf> {
-        if let Ok(p) = std::env::var(var) {
-            return Some(p.into());
-        }
-        let p = profile_dir.as_ref()?.join(bin);
-        p.is_file().then_some(p)
-    };
-    Some((find("RENDER", "render")?, find("TXMAKE", "txmake")?))
+    Some((
+        illume_testenv::require_built("render", "RENDER")?,
+        illume_testenv::require_built("txmake", "TXMAKE")?,
+    ))
 }
 
 /// Copies `pipeline`'s example into a scratch directory, runs `sh script` there and
@@ -77,10 +71,7 @@ pub fn run_both_forms(
     script: &str,
     outputs: &[[&str; 2]],
 ) -> Option<Vec<[illume_imageio::Image; 2]>> {
-    let Some((render_bin, txmake_bin)) = binaries() else {
-        eprintln!("SKIPPED: render/txmake binaries not built (cargo build -p render -p txmake)");
-        return None;
-    };
+    let (render_bin, txmake_bin) = binaries()?;
     let dir = scratch(&format!("{pipeline}-forms"));
     copy_example(pipeline, &dir);
     let status = Command::new("sh")

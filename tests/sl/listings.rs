@@ -7,28 +7,14 @@
 //! the prose's `solar (…) { statements; }` template). Prose that merely mentions a listing has
 //! no block after it.
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
-/// `../shared/reference/…` beside the checkout, or `$ILLUME_REFERENCE`.
-fn reference_path() -> PathBuf {
-    std::env::var_os("ILLUME_REFERENCE")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join("../../shared/reference/advanced-renderman-ch9-illumination-and-lights.txt")
-        })
-}
-
-/// Listing number → code, or `None` (with a loud message) when the text is absent.
+/// Listing number → code, or `None` when `../shared/reference/…` (beside the checkout, or under
+/// `$ILLUME_SHARED`) is absent: skipped loudly, a failure under `CI=true`.
 pub fn chapter9() -> Option<BTreeMap<u32, String>> {
-    let path = reference_path();
-    let Ok(text) = std::fs::read_to_string(&path) else {
-        eprintln!(
-            "\n*** SKIPPED: chapter 9 reference text not found at {} (set ILLUME_REFERENCE) ***\n",
-            path.display()
-        );
-        return None;
-    };
+    let path = illume_testenv::shared_file(
+        "reference/advanced-renderman-ch9-illumination-and-lights.txt",
+    )?;
+    let text = std::fs::read_to_string(&path).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     let is_fence = |k: usize| lines[k].trim_start().starts_with("```");
     let next_non_blank = |from: usize| (from..lines.len()).find(|&k| !lines[k].trim().is_empty());

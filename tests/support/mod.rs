@@ -81,22 +81,3 @@ pub fn facing_pole_holes(r: &illume_render::Rendered) -> Vec<(usize, usize, f32)
     }
     holes
 }
-
-/// The real-world RIB corpus: `$ILLUME_CORPUS`, else the first `shared/corpus` found walking up
-/// from the repository root (`../shared/corpus` beside the checkout).
-#[allow(dead_code)] // only the tests that render the corpus use it
-pub fn corpus_dir() -> Option<std::path::PathBuf> {
-    if let Ok(p) = std::env::var("ILLUME_CORPUS") {
-        return Some(p.into());
-    }
-    let mut dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    loop {
-        let c = dir.join("shared/corpus");
-        if c.is_dir() {
-            return Some(c);
-        }
-        if !dir.pop() {
-            return None;
-        }
-    }
-}

@@ -14,6 +14,9 @@ pub enum FarmError {
     /// A command line or job directory farm cannot work with.
     #[error("{0}")]
     Usage(String),
+    /// The RIB has errors (already printed, each with its line); nothing was submitted.
+    #[error("{scene}: {count} error(s) in the RIB; nothing submitted (fix them, or pass --allow-errors to render anyway)")]
+    SceneErrors { scene: String, count: usize },
     /// `sbatch` missing or refusing a job.
     #[error("{0}")]
     Slurm(String),

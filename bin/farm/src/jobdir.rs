@@ -10,7 +10,7 @@
 //! make/<frame>.rib              the Make* requests a pass task runs after its pass frames
 //! tiles/<nx>x<ny>/<frame>/x<col>y<row>.tile
 //! done/<stage>.<frame>          written when a pass task or a frame's merge finished
-//! errors/<stage>.<task>         render exited 1 (rendered with errors; output kept)
+//! errors/<stage>.<task name>   render exited 1 (rendered with errors; output kept): log paths
 //! logs/<stage>_<job>_<task>.out
 //! ```
 

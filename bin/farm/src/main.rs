@@ -2,13 +2,15 @@
 //! frames' displays, bit-identical to a single-machine `render`.
 //!
 //! ```text
-//! farm submit scene.rib [--frames 1-100] [--tiles 4x4] [--partition P] [--dry-run] ...
+//! farm submit scene.rib [--frames 1-100] [--tiles 4x4] [--partition P] [--dry-run]
+//!             [--allow-errors] ...
 //! farm merge  scene.rib|scene.farm [--force]
 //! farm status scene.rib|scene.farm
 //! ```
 //!
 //! Exit codes: 0 clean; 1 merge refused an incomplete frame or a display failed; 2 usage,
-//! unreadable scene or no Slurm (`sbatch` missing or refusing the job).
+//! unreadable scene, a scene with errors (without `--allow-errors`) or no Slurm (`sbatch`
+//! missing or refusing the job; a job directory the failed submit created is removed).
 #![forbid(unsafe_code)]
 
 mod error;
@@ -17,6 +19,7 @@ mod merge;
 mod plan;
 mod scene;
 mod script;
+mod source_lines;
 mod status;
 mod submit;
 mod tiles;
@@ -73,6 +76,10 @@ enum Command {
         /// Redo every task even if its output is up to date.
         #[arg(long)]
         force: bool,
+        /// Submit a scene whose RIB has errors (each task's render exits 1 and `farm status`
+        /// lists it); without this, errors are printed and nothing is submitted.
+        #[arg(long)]
+        allow_errors: bool,
     },
     /// Assemble every frame whose tiles are complete into its displays; list missing tiles.
     Merge {
@@ -132,6 +139,7 @@ fn run(args: Args) -> Result<ExitCode, FarmError> {
             max_array_size,
             render,
             force,
+            allow_errors,
         } => {
             let frames = match frames.as_deref() {
                 Some(f) => Some(parse_frame_range(f).ok_or_else(|| {
@@ -187,6 +195,7 @@ fn run(args: Args) -> Result<ExitCode, FarmError> {
                 dry_run,
                 force,
                 max_array: max_array_size,
+                allow_errors,
             };
             let report = submit::submit(&ctx, &config, &opts)?;
             print!("{}", report.text);

@@ -8,6 +8,7 @@
 //! run once, whole, before its tiles (rib/pipelines/shadow/shadow_single.rib is one such
 //! group). `Make*` requests before the first frame are the *setup* step every frame may need.
 
+use crate::source_lines::SourceLines;
 use illume_ri::{from_rib_diagnostic, Ri};
 use illume_rib::{Request, Span};
 use std::path::Path;
@@ -76,8 +77,6 @@ pub struct Scene {
     /// `Make*` before the first frame.
     pub setup: Vec<Request>,
     pub groups: Vec<Group>,
-    /// Error diagnostics the RIB produced while farm read it (the renders will report them).
-    pub errors: usize,
 }
 
 /// One frame as read, before classification.
@@ -120,9 +119,38 @@ fn is_make(req: &Request) -> bool {
     )
 }
 
-/// Reads the RIB at `path` (through the same `Ri` state machine `render` uses, so `Format`,
-/// `CropWindow`, archives and defaults resolve exactly as they will in the tiles).
+/// A scene as read, with every diagnostic the RIB produced on the way (parser and RI state),
+/// each carrying its source line so it prints as `render`'s parser does, caret and all.
+pub struct SceneRead {
+    pub diagnostics: Vec<illume_rib::Diagnostic>,
+    pub scene: Result<Scene, SceneError>,
+}
+
+impl SceneRead {
+    pub fn error_count(&self) -> usize {
+        self.diagnostics.iter().filter(|d| d.is_error()).count()
+    }
+}
+
+/// Reads the RIB at `path`, dropping its diagnostics (`merge` and `status` read a scene
+/// `submit` already checked).
 pub fn read_scene(path: &Path) -> Result<Scene, SceneError> {
+    read_scene_checked(path).scene
+}
+
+/// Reads the RIB at `path` (through the same `Ri` state machine `render` uses, so `Format`,
+/// `CropWindow`, archives and defaults resolve exactly as they will in the tiles) and keeps
+/// what it said about the RIB, so `submit` can refuse a scene every task would fail on.
+pub fn read_scene_checked(path: &Path) -> SceneRead {
+    let mut lines = SourceLines::default();
+    let scene = read_items(path, &mut lines);
+    SceneRead {
+        diagnostics: lines.diagnostics,
+        scene,
+    }
+}
+
+fn read_items(path: &Path, lines: &mut SourceLines) -> Result<Scene, SceneError> {
     let parser = illume_rib::open(path).map_err(|e| SceneError::Open {
         path: path.display().to_string(),
         source: e,
@@ -168,18 +196,19 @@ pub fn read_scene(path: &Path) -> Result<Scene, SceneError> {
                 }
                 ri.request(req);
             }
-            Err(d) => ri.report(from_rib_diagnostic(d)),
+            Err(d) => {
+                lines.remember(&d);
+                ri.report(from_rib_diagnostic(d));
+            }
         }
-        ri.drain_diagnostics();
+        lines.keep(ri.drain_diagnostics());
         collect(&mut ri, &mut items, &mut world_spans);
     }
     ri.finish();
-    ri.drain_diagnostics();
+    lines.keep(ri.drain_diagnostics());
     collect(&mut ri, &mut items, &mut world_spans);
-    let errors = ri.error_count();
     check_frame_numbers(&items)?;
-    let mut scene = classify(items);
-    scene.errors = errors;
+    let scene = classify(items);
     if scene.groups.is_empty() {
         return Err(SceneError::Empty(path.display().to_string()));
     }

@@ -6,7 +6,8 @@
 //! fails) and runs `render` through `farm_run`, which on a failed render asks Slurm to requeue
 //! the task itself (`scontrol requeue`) while `SLURM_RESTART_COUNT` is below the retry bound,
 //! then gives up with render's exit code. A render that exits 1 rendered with errors: its
-//! output is kept and noted in `errors/`, since running it again gives the same errors.
+//! output is kept and noted in `errors/<task>` (which holds the task's log path, for
+//! `farm status`), since running it again gives the same errors.
 //! Outputs already newer than the scene are skipped, so a requeued or resubmitted task that
 //! already finished costs nothing.
 
@@ -92,6 +93,16 @@ fn header(ctx: &ScriptContext, stage: &str, array: bool) -> String {
         "i=$(( ${{FARM_OFFSET:-0}} + ${{SLURM_ARRAY_TASK_ID:-0}} ))"
     );
     let _ = writeln!(s, "attempt=$(( ${{SLURM_RESTART_COUNT:-0}} + 1 ))");
+    // This task's log (the --output pattern above, expanded), named in errors/ markers.
+    if array {
+        let _ = writeln!(
+            s,
+            "LOG=\"$JOBDIR/logs/{stage}_${{SLURM_ARRAY_JOB_ID:-0}}_${{SLURM_ARRAY_TASK_ID:-0}}.out\""
+        );
+    } else {
+        let _ = writeln!(s, "LOG=\"$JOBDIR/logs/{stage}_${{SLURM_JOB_ID:-0}}.out\"");
+    }
+    let _ = writeln!(s, "TASK={stage}");
     s.push_str(FARM_RUN);
     s
 }
@@ -113,10 +124,12 @@ farm_run() {
   wait "$pid"
   local rc=$?
   RENDER_SECONDS=$(awk -v a="$t0" -v b="$EPOCHREALTIME" -v s="$RENDER_SECONDS" 'BEGIN { printf "%.3f", s + b - a }')
+  # A task that runs again starts with a clean slate: an old errors/ marker goes.
+  if [ -z "${FARM_CLEARED:-}" ]; then rm -f "$JOBDIR/errors/$TASK"; FARM_CLEARED=1; fi
   case $rc in
     0) return 0 ;;
     1) echo "farm: rendered with errors (output kept): $*"
-       mkdir -p "$JOBDIR/errors" && : > "$JOBDIR/errors/$FARM_STAGE.$i"
+       mkdir -p "$JOBDIR/errors" && echo "$LOG" >> "$JOBDIR/errors/$TASK"
        return 0 ;;
   esac
   echo "farm: exit $rc on attempt $attempt: $*"
@@ -184,6 +197,7 @@ pub fn passes_script(ctx: &ScriptContext, plan: &Plan) -> String {
         s.push_str("      :\n    } ;;\n");
     }
     s.push_str(no_task());
+    s.push_str("TASK=\"passes.$label\"\n");
     s.push_str("marker=\"$JOBDIR/done/passes.$label\"\n");
     s.push_str("farm_up_to_date \"$marker\" && farm_done\n");
     s.push_str("passes\nfarm_mark_done \"$marker\"\nfarm_done\n");
@@ -204,6 +218,8 @@ pub fn tiles_script(ctx: &ScriptContext, plan: &Plan) -> String {
         );
     }
     s.push_str(no_task());
+    // tiles/4x4/f0002/x1y1.tile -> tiles.4x4.f0002.x1y1
+    s.push_str("TASK=${tile#tiles/}; TASK=${TASK%.tile}; TASK=\"tiles.${TASK//\\//.}\"\n");
     s.push_str("out=\"$JOBDIR/$tile\"\n");
     s.push_str("farm_up_to_date \"$out\" && farm_done\n");
     s.push_str("mkdir -p \"$(dirname \"$out\")\"\n");

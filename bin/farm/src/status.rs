@@ -92,6 +92,35 @@ fn read_logs(dir: &JobDir) -> Vec<String> {
         .collect()
 }
 
+/// The tasks whose render exited 1, from the `errors/` markers the scripts write
+/// (`tiles.4x4.f0002.x1y1` holding the task's log paths): (`tiles 4x4/f0002/x1y1`, logs).
+pub fn rendered_with_errors(dir: &JobDir) -> Vec<(String, Vec<String>)> {
+    let Ok(entries) = std::fs::read_dir(dir.errors()) else {
+        return Vec::new();
+    };
+    let mut out: Vec<(String, Vec<String>)> = entries
+        .filter_map(|e| {
+            let path = e.ok()?.path();
+            let name = path.file_name()?.to_str()?.to_string();
+            let task = match name.split_once('.') {
+                Some((stage, rest)) => format!("{stage} {}", rest.replace('.', "/")),
+                None => name,
+            };
+            let mut logs: Vec<String> = std::fs::read_to_string(&path)
+                .unwrap_or_default()
+                .lines()
+                .map(str::trim)
+                .filter(|l| !l.is_empty())
+                .map(String::from)
+                .collect();
+            logs.dedup();
+            Some((task, logs))
+        })
+        .collect();
+    out.sort();
+    out
+}
+
 /// `squeue` states of the given job ids (array tasks counted per state); `None` without squeue.
 fn slurm_states(ids: &[String]) -> Option<BTreeMap<String, BTreeMap<String, usize>>> {
     if ids.is_empty() {
@@ -200,13 +229,28 @@ pub fn status(dir: &JobDir) -> Result<String, FarmError> {
             );
         }
     }
-    let errors = std::fs::read_dir(dir.errors()).map_or(0, |d| d.count());
+    let errors = rendered_with_errors(dir);
     let timings = parse_logs(&read_logs(dir));
     let _ = writeln!(
         s,
-        "tasks   {} attempt(s), {} task(s) retried, {} gave up, {} rendered with errors",
-        timings.attempts, timings.retried, timings.gave_up, errors
+        "tasks   {} attempt(s), {} task(s) retried, {} gave up, {} rendered with errors{}",
+        timings.attempts,
+        timings.retried,
+        timings.gave_up,
+        errors.len(),
+        if errors.is_empty() { "" } else { ":" }
     );
+    for (task, logs) in &errors {
+        let _ = writeln!(
+            s,
+            "          {task}: log {}",
+            if logs.is_empty() {
+                "unknown (see logs/)".to_string()
+            } else {
+                logs.join(", ")
+            }
+        );
+    }
     let tiles: Vec<&(String, f64, f64, f64)> =
         timings.tasks.iter().filter(|t| t.0 == "tiles").collect();
     if !tiles.is_empty() {

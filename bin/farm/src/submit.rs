@@ -6,7 +6,7 @@
 use crate::error::{io_error, FarmError};
 use crate::jobdir::{write_atomically, Config, JobDir};
 use crate::plan::{plan, todo, Plan, Todo};
-use crate::scene::read_scene;
+use crate::scene::read_scene_checked;
 use crate::script::{self, ScriptContext};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -153,6 +153,8 @@ pub struct SubmitOptions {
     pub dry_run: bool,
     pub force: bool,
     pub max_array: usize,
+    /// Submit even when the RIB has errors.
+    pub allow_errors: bool,
 }
 
 /// The printed form of a dry run: every file, then the sbatch lines as a runnable script.
@@ -197,10 +199,12 @@ fn sbatch(args: &[String]) -> Result<String, FarmError> {
         .output()
         .map_err(|e| FarmError::Slurm(format!("sbatch: {e}")))?;
     if !out.status.success() {
+        let stderr = String::from_utf8_lossy(&out.stderr);
         return Err(FarmError::Slurm(format!(
-            "sbatch {} failed: {}",
+            "sbatch {} failed: {}\nfarm: {}",
             args.join(" "),
-            String::from_utf8_lossy(&out.stderr).trim()
+            stderr.trim(),
+            slurm_hint(&stderr, std::env::var_os("SLURM_CONF").as_deref())
         )));
     }
     let text = String::from_utf8_lossy(&out.stdout);
@@ -212,6 +216,34 @@ fn sbatch(args: &[String]) -> Result<String, FarmError> {
         )));
     }
     Ok(id)
+}
+
+/// What to set when `sbatch` refuses: the usual causes are no cluster configuration on this
+/// host, a partition the cluster does not have, or controllers that cannot be reached.
+fn slurm_hint(stderr: &str, slurm_conf: Option<&std::ffi::OsStr>) -> String {
+    let lower = stderr.to_ascii_lowercase();
+    let test_cluster = "for the test cluster: eval \"$(tests/farm/slurm_up.sh DIR)\"";
+    match slurm_conf {
+        Some(conf) if !Path::new(conf).is_file() => format!(
+            "SLURM_CONF={} is not a file: point it at your cluster's slurm.conf ({test_cluster})",
+            Path::new(conf).display()
+        ),
+        None if ["/etc/slurm/slurm.conf", "/etc/slurm-llnl/slurm.conf"]
+            .iter()
+            .all(|p| !Path::new(p).is_file()) =>
+        {
+            format!(
+                "this host has no Slurm configuration: set SLURM_CONF to your cluster's slurm.conf ({test_cluster}), or submit from a login node"
+            )
+        }
+        _ if lower.contains("partition") => {
+            "choose an existing partition with --partition (`sinfo -s` lists them)".to_string()
+        }
+        _ => format!(
+            "check that `sinfo` works on this host (SLURM_CONF={}; the controller must be up and reachable)",
+            slurm_conf.map_or("unset".into(), |c| Path::new(c).display().to_string())
+        ),
+    }
 }
 
 fn now_seconds() -> f64 {
@@ -230,14 +262,25 @@ pub fn submit(
     config: &Config,
     opts: &SubmitOptions,
 ) -> Result<SubmitReport, FarmError> {
-    let scene = read_scene(&config.scene)?;
-    if scene.errors > 0 {
+    let read = read_scene_checked(&config.scene);
+    // What `render` would say about the RIB, said once here instead of once per task.
+    for d in &read.diagnostics {
+        eprintln!("{d}");
+    }
+    let errors = read.error_count();
+    if errors > 0 && !opts.allow_errors {
+        return Err(FarmError::SceneErrors {
+            scene: config.scene.display().to_string(),
+            count: errors,
+        });
+    }
+    if errors > 0 {
         eprintln!(
-            "farm: warning: {} has {} error(s); every task's render will report them",
-            config.scene.display(),
-            scene.errors
+            "farm: warning: {}: {errors} error(s); --allow-errors: submitting anyway (`farm status` lists the tasks that render with errors)",
+            config.scene.display()
         );
     }
+    let scene = read.scene?;
     let plan = plan(&scene, config.tiles, config.frames);
     if plan.frames.is_empty() && plan.passes.is_empty() {
         return Err(FarmError::Usage(format!(
@@ -280,32 +323,14 @@ pub fn submit(
         }
         let _ = std::fs::remove_file(dir.done("setup", "all"));
     }
-    dir.write_config(config)?;
-    std::fs::create_dir_all(dir.logs()).map_err(io_error(&dir.logs()))?;
-    for (path, text) in &files {
-        write_atomically(path, text.as_bytes())?;
-        make_executable(path)?;
-    }
-    let mut ids: std::collections::HashMap<String, String> = Default::default();
+    // A submit that fails leaves things as they were: no job directory it created, no jobs.
+    let created = !dir.root.exists();
+    let previous_jobs = std::fs::read_to_string(dir.jobs_path()).ok();
     let mut submitted = Vec::new();
-    let mut jobs = std::fs::read_to_string(dir.jobs_path()).unwrap_or_default();
-    for sub in &subs {
-        let after: Vec<String> = sub
-            .after
-            .iter()
-            .filter_map(|v| ids.get(v).cloned())
-            .collect();
-        let t = now_seconds();
-        let id = sbatch(&sub.args(&after))?;
-        jobs.push_str(&format!(
-            "{} {id} {t:.3} {}\n",
-            sub.stage,
-            sub.array.as_deref().unwrap_or("-")
-        ));
-        // Record as we go: a later sbatch failing must not lose the ids of submitted jobs.
-        write_atomically(&dir.jobs_path(), jobs.as_bytes())?;
-        ids.insert(sub.var.clone(), id.clone());
-        submitted.push((sub.stage.clone(), id));
+    let result = write_and_submit(ctx, config, &files, &subs, &mut submitted);
+    if let Err(e) = result {
+        undo(dir, created, previous_jobs.as_deref(), &submitted);
+        return Err(e);
     }
     let text = if submitted.is_empty() {
         format!(
@@ -327,6 +352,76 @@ pub fn submit(
         )
     };
     Ok(SubmitReport { text })
+}
+
+/// Writes the job directory's files and submits `subs` in order; `submitted` gets each
+/// (stage, job id) as soon as sbatch accepts it, so a failure later can cancel them.
+fn write_and_submit(
+    ctx: &ScriptContext,
+    config: &Config,
+    files: &[(PathBuf, String)],
+    subs: &[Submission],
+    submitted: &mut Vec<(String, String)>,
+) -> Result<(), FarmError> {
+    let dir = &ctx.dir;
+    dir.write_config(config)?;
+    std::fs::create_dir_all(dir.logs()).map_err(io_error(&dir.logs()))?;
+    for (path, text) in files {
+        write_atomically(path, text.as_bytes())?;
+        make_executable(path)?;
+    }
+    let mut ids: std::collections::HashMap<String, String> = Default::default();
+    let mut jobs = std::fs::read_to_string(dir.jobs_path()).unwrap_or_default();
+    for sub in subs {
+        let after: Vec<String> = sub
+            .after
+            .iter()
+            .filter_map(|v| ids.get(v).cloned())
+            .collect();
+        let t = now_seconds();
+        let id = sbatch(&sub.args(&after))?;
+        jobs.push_str(&format!(
+            "{} {id} {t:.3} {}\n",
+            sub.stage,
+            sub.array.as_deref().unwrap_or("-")
+        ));
+        // Record as we go: a later sbatch failing must not lose the ids of submitted jobs.
+        write_atomically(&dir.jobs_path(), jobs.as_bytes())?;
+        ids.insert(sub.var.clone(), id.clone());
+        submitted.push((sub.stage.clone(), id));
+    }
+    Ok(())
+}
+
+/// After a failed submit: cancels the jobs it did submit (their scripts are about to go),
+/// then removes the job directory if this submit created it, else restores its `jobs` file.
+fn undo(dir: &JobDir, created: bool, previous_jobs: Option<&str>, submitted: &[(String, String)]) {
+    if !submitted.is_empty() {
+        let ids: Vec<&str> = submitted.iter().map(|(_, id)| id.as_str()).collect();
+        let cancelled = Command::new("scancel").args(&ids).status();
+        if !cancelled.is_ok_and(|s| s.success()) {
+            eprintln!(
+                "farm: warning: could not cancel the jobs already submitted: scancel {}",
+                ids.join(" ")
+            );
+        }
+    }
+    if created {
+        if let Err(e) = std::fs::remove_dir_all(&dir.root) {
+            eprintln!(
+                "farm: warning: could not remove {}: {e}",
+                dir.root.display()
+            );
+        }
+    } else {
+        let restored = match previous_jobs {
+            Some(text) => write_atomically(&dir.jobs_path(), text.as_bytes()),
+            None => std::fs::remove_file(dir.jobs_path()).or(Ok(())),
+        };
+        if let Err(e) = restored {
+            eprintln!("farm: warning: {e}");
+        }
+    }
 }
 
 #[cfg(unix)]

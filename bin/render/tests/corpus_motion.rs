@@ -1,33 +1,13 @@
 //! `render` on the corpus' motion-blur scene (Aqsis `transmb_test.rib`: moving, scaling and
 //! rotating spheres and a cylinder, with motion blocks that cancel), in a temporary directory:
 //! exit code 0, no panic, and its framebuffer PNG written.
-use std::path::PathBuf;
 use std::process::Command;
-
-fn corpus_dir() -> Option<PathBuf> {
-    if let Ok(p) = std::env::var("ILLUME_CORPUS") {
-        return Some(p.into());
-    }
-    let mut dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    loop {
-        let c = dir.join("shared/corpus");
-        if c.is_dir() {
-            return Some(c);
-        }
-        if !dir.pop() {
-            return None;
-        }
-    }
-}
 
 #[test]
 fn transmb_test_renders_cleanly() {
-    let Some(corpus) = corpus_dir() else {
-        eprintln!("SKIPPED: shared/corpus not found (set ILLUME_CORPUS)");
-        return;
+    let Some(rib) = illume_testenv::shared_file("corpus/aqsis2001/transmb_test.rib") else {
+        return; // skipped loudly; a failure under CI=true
     };
-    let rib = corpus.join("aqsis2001/transmb_test.rib");
-    assert!(rib.is_file(), "{} missing from the corpus", rib.display());
     let dir = std::env::temp_dir().join(format!("illume-transmb-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_render"))

@@ -7,17 +7,6 @@ use illume_rib::{BasisSpec, Declaration, Request};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-/// `ILLUME_CORPUS`, else a `shared/corpus` beside one of the manifest's ancestors.
-fn corpus() -> Option<PathBuf> {
-    if let Ok(p) = std::env::var("ILLUME_CORPUS") {
-        return Some(PathBuf::from(p));
-    }
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .ancestors()
-        .map(|a| a.join("shared/corpus"))
-        .find(|p| p.is_dir())
-}
-
 fn ribs(dir: &Path, out: &mut Vec<PathBuf>) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
@@ -41,11 +30,8 @@ fn basis(b: &BasisSpec) -> [f32; 16] {
 
 #[test]
 fn corpus_geometry_builds_and_dices_inside_its_bounds() {
-    let Some(dir) = corpus() else {
-        eprintln!(
-            "SKIPPED: no RIB corpus (set ILLUME_CORPUS or put shared/corpus beside the workspace)"
-        );
-        return;
+    let Some(dir) = illume_testenv::shared_dir("corpus") else {
+        return; // skipped loudly; a failure under CI=true
     };
     let mut files = Vec::new();
     ribs(&dir, &mut files);

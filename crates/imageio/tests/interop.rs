@@ -1,7 +1,8 @@
 //! Interop with OpenImageIO (Debian `openimageio-tools`): every display kind we write must open
 //! in `iinfo` with the right size, channels and sample type, and `oiiotool --stats` must agree
 //! with our own reader's min/max/average. Corpus TIFFs read by us must equal OpenImageIO's
-//! decoding of them. When the tools are absent the tests say so loudly and pass.
+//! decoding of them. When the tools are absent the tests say so loudly and pass, except under
+//! `CI=true`, where they fail (`illume-testenv`).
 
 use illume_imageio::*;
 use std::path::{Path, PathBuf};
@@ -16,12 +17,9 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// Whether `tool` is installed; when not, the test skips loudly (a failure under `CI=true`).
 fn have(tool: &str) -> bool {
-    let found = Command::new(tool).arg("--help").output().is_ok();
-    if !found {
-        eprintln!("\n******** SKIPPED: {tool} not found (install openimageio-tools) ********\n");
-    }
-    found
+    illume_testenv::require_tool(tool).is_some()
 }
 
 fn pattern(width: u32, height: u32, mode: &str) -> Image {
@@ -350,26 +348,11 @@ fn oiio_reads_every_display_kind_we_write() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// The corpus directory: `ILLUME_CORPUS`, or a `shared/corpus` beside an ancestor of this crate.
-fn corpus() -> Option<PathBuf> {
-    if let Ok(p) = std::env::var("ILLUME_CORPUS") {
-        return Some(PathBuf::from(p));
-    }
-    let mut dir = Some(Path::new(env!("CARGO_MANIFEST_DIR")));
-    while let Some(d) = dir {
-        let candidate = d.join("shared").join("corpus");
-        if candidate.is_dir() {
-            return Some(candidate);
-        }
-        dir = d.parent();
-    }
-    eprintln!("\n******** SKIPPED: corpus not found (set ILLUME_CORPUS) ********\n");
-    None
-}
-
 #[test]
 fn corpus_tiffs_decode_like_openimageio() {
-    let Some(corpus) = corpus() else { return };
+    let Some(corpus) = illume_testenv::shared_dir("corpus") else {
+        return; // skipped loudly; a failure under CI=true
+    };
     let dir = scratch("corpus");
     let oiio = have("oiiotool");
     for (name, nc) in [
@@ -529,7 +512,7 @@ fn tiffs_written_by_openimageio_read_back_equal() {
         );
     }
     // A mip-mapped tiled EXR from maketx: we read level 0.
-    if Command::new("maketx").arg("--help").output().is_ok() {
+    if have("maketx") {
         let out = dir.join("mip.exr");
         let status = Command::new("maketx")
             .arg(&src)
@@ -539,8 +522,6 @@ fn tiffs_written_by_openimageio_read_back_equal() {
             .unwrap();
         assert!(status.success());
         check_close(&read_image(&out).unwrap(), &image, 1e-3, "maketx mip.exr");
-    } else {
-        eprintln!("\n******** SKIPPED: maketx not found ********\n");
     }
 }
 

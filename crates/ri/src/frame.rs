@@ -3,6 +3,7 @@ use crate::attributes::{Attributes, Light};
 use crate::camera::Camera;
 use crate::options::Options;
 use crate::solid::SolidTree;
+use crate::state::{BlockKind, Ri};
 use illume_geom::Primitive;
 use illume_rib::Span;
 use std::sync::Arc;
@@ -35,4 +36,64 @@ pub struct Frame {
     pub solids: SolidTree,
     /// Named coordinate systems (`CoordinateSystem`), camera from that space.
     pub coordinate_systems: Vec<(String, glam::DMat4)>,
+}
+
+// ---- WorldBegin/WorldEnd: a frame's world block ----------------------------------
+
+impl Ri {
+    pub(crate) fn world_begin(&mut self, span: &Span) {
+        if self.in_world() {
+            self.diagnostics
+                .error(span, "WorldBegin", "already inside a world block (ignored)");
+            return;
+        }
+        self.push_block(BlockKind::World, span);
+        let mut options = self.options.clone();
+        if let Some(c) = self.crop_override {
+            options.crop = c;
+        }
+        self.camera = Some(Camera::new(&options, self.ctm));
+        self.camera_from_world = Some(self.ctm);
+        self.camera_motion = self.ctm_motion.clone();
+        self.coordinate_systems
+            .insert("world".to_string(), self.ctm);
+        self.world_active = match (self.frame_range, self.frame_number) {
+            (Some((a, b)), Some(n)) => (a..=b).contains(&n),
+            _ => true,
+        };
+        self.primitives.clear();
+    }
+
+    pub(crate) fn world_end(&mut self) {
+        let Some(camera) = self.camera.take() else {
+            return;
+        };
+        let mut options = self.options.clone();
+        if let Some(c) = self.crop_override {
+            options.crop = c;
+        }
+        let primitives = std::mem::take(&mut self.primitives);
+        let solids = std::mem::take(&mut self.solids);
+        self.open_solids.clear();
+        if self.world_active {
+            self.frames.push(Frame {
+                number: self.frame_number,
+                options,
+                camera,
+                lights: self.lights.clone(),
+                primitives,
+                solids,
+                coordinate_systems: self
+                    .coordinate_systems
+                    .iter()
+                    .map(|(k, v)| (k.clone(), *v))
+                    .collect(),
+            });
+        }
+        self.lights.clear();
+        self.camera_from_world = None;
+        self.camera_motion = None;
+        self.coordinate_systems.remove("world");
+        self.world_active = true;
+    }
 }

@@ -8,14 +8,19 @@
 //! Request: message`), drained with [`Ri::drain_diagnostics`]; the state always recovers.
 #![forbid(unsafe_code)]
 
+mod archive;
 pub mod attributes;
 pub mod camera;
 pub mod declarations;
 pub mod diagnostic;
 pub mod frame;
+mod geometry;
+mod lights;
+mod make_texture;
 pub mod motion;
 pub mod options;
 pub mod paramlist;
+mod procedural;
 pub mod solid;
 pub mod state;
 pub mod transform;

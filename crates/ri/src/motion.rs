@@ -5,8 +5,10 @@
 //! the times everything is piecewise linear, as PRMan does it: matrices are interpolated entry
 //! by entry (so a rotation between two keys sweeps the chord, not the arc: more keys follow the
 //! arc closer), and a deforming primitive's diced vertices are interpolated one to one.
+use crate::state::{BlockKind, Ri};
 use glam::DMat4;
 use illume_geom::Primitive;
+use illume_rib::{Request, Span};
 
 /// A transformation that is `mats[k]` at `times[k]`, piecewise linear between them and clamped
 /// outside them (times outside the shutter just shape the interpolation).
@@ -69,6 +71,123 @@ impl MovingTransform {
 pub struct MotionKeys {
     pub times: Vec<f32>,
     pub later: Vec<Box<dyn Primitive>>,
+}
+
+// ---- MotionBegin/MotionEnd in the RI state --------------------------------------------
+
+/// An open `MotionBegin` block: its times, the transform it started from, and what each of
+/// its requests produced (one transformation or one primitive list per time).
+pub(crate) struct OpenMotion {
+    pub(crate) times: Vec<f64>,
+    pub(crate) base: (DMat4, Option<MovingTransform>),
+    pub(crate) transforms: Vec<(DMat4, Option<MovingTransform>)>,
+    pub(crate) geometry: Vec<Vec<Box<dyn illume_geom::Primitive>>>,
+    /// Span and name of the first request, for the block's errors.
+    pub(crate) first: Option<(Span, String)>,
+}
+
+impl Ri {
+    pub(crate) fn motion_begin(&mut self, times: Vec<f32>, span: &Span) {
+        self.push_block(BlockKind::Motion, span);
+        if self.motion.is_some() {
+            self.diagnostics.error(
+                span,
+                "MotionBegin",
+                "motion blocks can not nest (its requests apply as if outside it)",
+            );
+            return;
+        }
+        let sorted = times.windows(2).all(|w| w[0] <= w[1]);
+        if times.is_empty() || !sorted || times.iter().any(|t| !t.is_finite()) {
+            self.diagnostics.error(
+                span,
+                "MotionBegin",
+                "expected one or more increasing times (its requests apply as if outside it)",
+            );
+            return;
+        }
+        self.motion = Some(OpenMotion {
+            times: times.iter().map(|&t| f64::from(t)).collect(),
+            base: (self.ctm, self.ctm_motion.clone()),
+            transforms: Vec::new(),
+            geometry: Vec::new(),
+            first: None,
+        });
+    }
+
+    /// The k-th transformation of a motion block: applied to the transform the block started
+    /// from, kept for `MotionEnd`.
+    pub(crate) fn motion_transform(&mut self, req: Request, span: &Span) {
+        let Some(m) = self.motion.as_mut() else {
+            return;
+        };
+        m.first
+            .get_or_insert((span.clone(), req.name().to_string()));
+        let (ctm, motion) = m.base.clone();
+        self.ctm = ctm;
+        self.ctm_motion = motion;
+        self.transform_request(req, span);
+        let result = (self.ctm, self.ctm_motion.take());
+        let m = self.motion.as_mut().expect("checked above");
+        m.transforms.push(result);
+        (self.ctm, self.ctm_motion) = m.base.clone();
+    }
+
+    /// `MotionEnd`: the block's transformations become one moving transform, its primitives one
+    /// moving primitive each.
+    pub(crate) fn motion_end(&mut self, _span: &Span) {
+        let Some(m) = self.motion.take() else { return };
+        let n = m.times.len();
+        let Some((span, name)) = m.first else { return };
+        if !m.transforms.is_empty() && !m.geometry.is_empty() {
+            self.diagnostics.error(
+                &span,
+                &name,
+                "a motion block holds either transformations or primitives, not both (the first of each is used)",
+            );
+        }
+        let count = m.transforms.len().max(m.geometry.len());
+        if count != n && (m.geometry.is_empty() || m.transforms.is_empty()) {
+            self.diagnostics.error(
+                &span,
+                &name,
+                format!("MotionBegin gave {n} times but the block holds {count} requests (the first is used)"),
+            );
+        }
+        let mut transforms = m.transforms;
+        if transforms.len() == n && m.geometry.is_empty() {
+            let at = |k: usize, t: f64| {
+                let (c, mm): &(DMat4, Option<MovingTransform>) = &transforms[k];
+                mm.as_ref().map_or(*c, |mm| mm.at(t))
+            };
+            let mut times = m.times.clone();
+            for (_, mm) in &transforms {
+                times.extend(mm.iter().flat_map(|mm| mm.times.iter().copied()));
+            }
+            let moving = MovingTransform::sampled(times, |t| {
+                let (k, w) = segment(&m.times, t);
+                if n == 1 {
+                    at(0, t)
+                } else {
+                    at(k, t) * (1.0 - w) + at(k + 1, t) * w
+                }
+            });
+            self.ctm = moving.mats[0];
+            // Keys that all agree (motion blocks that cancel, as in Aqsis' transmb_test) are
+            // no motion: the primitives stay on the hider's fast path.
+            let moves = moving.mats.iter().any(|m| *m != moving.mats[0]);
+            self.ctm_motion = moves.then_some(moving);
+        } else if !transforms.is_empty() {
+            (self.ctm, self.ctm_motion) = transforms.swap_remove(0);
+        }
+        let mut geometry = m.geometry;
+        if geometry.len() == n && transforms.is_empty() {
+            self.push_primitives(m.times, geometry, &span, &name);
+        } else if !geometry.is_empty() {
+            let first = geometry.swap_remove(0);
+            self.push_primitives(vec![0.0], vec![first], &span, &name);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -7,6 +7,8 @@
 //!
 //! Separate top-level `SolidBegin` blocks are separate trees (roots): a surface event on one
 //! solid never changes another's membership.
+use crate::state::Ri;
+use illume_rib::Span;
 
 /// A solid's set operation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -88,6 +90,54 @@ impl SolidTree {
             SolidOp::Intersection => !n.children.is_empty() && kids.all(|k| k),
             SolidOp::Difference => kids.next().unwrap_or(false) && !kids.any(|k| k),
         }
+    }
+}
+
+// ---- SolidBegin/SolidEnd in the RI state ----------------------------------------------
+
+impl Ri {
+    /// Opens a CSG node under the innermost open solid. The caller pushes the block, so
+    /// `SolidEnd` and block recovery pop `open_solids` in step with the block stack.
+    pub(crate) fn solid_begin(&mut self, op: &str, span: &Span) {
+        let op = SolidOp::from_token(op).unwrap_or_else(|| {
+            self.diagnostics.error(
+                span,
+                "SolidBegin",
+                format!("unknown operation `{op}` (treated as \"union\")"),
+            );
+            SolidOp::Union
+        });
+        let parent = self.open_solids.last().copied();
+        let node = match parent {
+            Some(p) if self.is_primitive_solid(p) => {
+                self.diagnostics.warn(
+                    span,
+                    "SolidBegin",
+                    "a primitive solid can not contain solids: this block's surfaces join the enclosing primitive solid",
+                );
+                p
+            }
+            _ => self.solids.add(op, parent),
+        };
+        self.open_solids.push(node);
+    }
+
+    /// The primitive solid the next geometry bounds: the open primitive solid, or, for a
+    /// surface directly inside a union/intersection/difference, a primitive solid of its own.
+    pub(crate) fn solid_leaf(&mut self) -> Option<u32> {
+        let top = *self.open_solids.last()?;
+        Some(if self.is_primitive_solid(top) {
+            top
+        } else {
+            self.solids.add(SolidOp::Primitive, Some(top))
+        })
+    }
+
+    pub(crate) fn is_primitive_solid(&self, node: u32) -> bool {
+        self.solids
+            .nodes
+            .get(node as usize)
+            .is_some_and(|n| n.op == SolidOp::Primitive)
     }
 }
 

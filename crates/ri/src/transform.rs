@@ -2,7 +2,9 @@
 //! convention. RIB writes matrices for row vectors (`p' = p·M`), so a RIB array read with
 //! `from_cols_array` is already the column-vector matrix. Every request concatenates on the
 //! object side, `CTM ← CTM · T`, which is why `Rotate 90 0 0 1` maps object +x to camera +y.
+use crate::state::Ri;
 use glam::{DMat3, DMat4, DVec3};
+use illume_rib::{Request, Span};
 
 /// A RIB `Transform`/`ConcatTransform` array (row-vector order) as a column-vector matrix.
 pub fn from_rib(m: &[f32; 16]) -> DMat4 {
@@ -75,6 +77,77 @@ pub fn perspective(fov_degrees: f32) -> Option<DMat4> {
         0.0, 0.0, 1.0, 1.0, //
         0.0, 0.0, -1.0, 0.0,
     ]))
+}
+
+// ---- the transformation requests in the RI state ---------------------------------------
+
+impl Ri {
+    /// The transformation requests of RI Spec 3.2 §4.3 and `CoordinateSystem` (§4.3.1).
+    pub(crate) fn transform_request(&mut self, req: Request, span: &Span) {
+        let name = req.name().to_string();
+        use Request::*;
+        match req {
+            Identity => {
+                self.ctm = self.camera_from_world.unwrap_or(DMat4::IDENTITY);
+                self.ctm_motion = self.camera_motion.clone();
+            }
+            Transform(m) => {
+                let m = from_rib(&m);
+                self.ctm = self.camera_from_world.unwrap_or(DMat4::IDENTITY) * m;
+                self.ctm_motion = self.camera_motion.as_ref().map(|c| c.then(m));
+            }
+            ConcatTransform(m) => self.concat(from_rib(&m)),
+            Perspective(fov) => match perspective(fov) {
+                Some(m) => self.concat(m),
+                None => self.diagnostics.error(
+                    span,
+                    &name,
+                    format!("fov must lie in (0, 180), found {fov}"),
+                ),
+            },
+            Translate(t) => self.concat(DMat4::from_translation(DVec3::from(t.map(f64::from)))),
+            Rotate { angle, axis } => match rotate(angle, axis) {
+                Some(m) => self.concat(m),
+                None => self.diagnostics.error(span, &name, "the axis is zero"),
+            },
+            Scale(s) => self.concat(DMat4::from_scale(DVec3::from(s.map(f64::from)))),
+            Skew(a) => match skew(&a) {
+                Ok(m) => self.concat(m),
+                Err(e) => self.diagnostics.error(span, &name, e),
+            },
+            CoordinateSystem(n) => {
+                self.coordinate_systems.insert(n, self.ctm);
+            }
+            CoordSysTransform(n) => match self.named_space(&n) {
+                Some(m) => (self.ctm, self.ctm_motion) = (m, None),
+                None => self.diagnostics.error(
+                    span,
+                    &name,
+                    format!("unknown coordinate system \"{n}\""),
+                ),
+            },
+            other => {
+                self.diagnostics
+                    .error(span, other.name(), "request not handled here (internal)")
+            }
+        }
+    }
+
+    pub(crate) fn concat(&mut self, m: DMat4) {
+        self.ctm *= m;
+        if let Some(mm) = &self.ctm_motion {
+            self.ctm_motion = Some(mm.then(m));
+        }
+    }
+
+    pub(crate) fn named_space(&self, name: &str) -> Option<DMat4> {
+        match name {
+            "camera" => Some(DMat4::IDENTITY),
+            "current" | "object" => Some(self.ctm),
+            "world" => self.camera_from_world.or(Some(DMat4::IDENTITY)),
+            n => self.coordinate_systems.get(n).copied(),
+        }
+    }
 }
 
 #[cfg(test)]

@@ -15,6 +15,7 @@
 #![forbid(unsafe_code)]
 
 mod binary;
+mod classification;
 pub mod declaration;
 mod diagnostic;
 mod lexer;

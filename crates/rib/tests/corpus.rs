@@ -3,16 +3,6 @@
 use illume_rib::{BinaryWriter, Parser, Request, Severity};
 use std::path::{Path, PathBuf};
 
-fn corpus_dir() -> Option<PathBuf> {
-    if let Some(dir) = std::env::var_os("ILLUME_CORPUS") {
-        return Some(PathBuf::from(dir));
-    }
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .ancestors()
-        .map(|a| a.join("shared/corpus"))
-        .find(|p| p.is_dir())
-}
-
 fn rib_files(dir: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();
     for sub in std::fs::read_dir(dir).unwrap().flatten() {
@@ -47,12 +37,8 @@ fn parse_clean(bytes: &[u8], name: &str) -> Vec<Request> {
 
 #[test]
 fn every_corpus_rib_parses_without_errors_and_round_trips() {
-    let Some(dir) = corpus_dir() else {
-        eprintln!(
-            "SKIPPED: no shared/corpus found above {} and ILLUME_CORPUS unset",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        return;
+    let Some(dir) = illume_testenv::shared_dir("corpus") else {
+        return; // skipped loudly; a failure under CI=true
     };
     let files = rib_files(&dir);
     assert!(

@@ -7,13 +7,16 @@
 //! after a varying `return`, and every `illuminance`/`illuminate`/`solar` body). Because one local's detail
 //! feeds another's, the walk repeats until nothing changes (details only ever rise from
 //! uniform to varying, so this terminates). A final walk writes [`Expr::detail`] and
-//! [`VarInfo::inferred`] and reports assignments that break a *declared* uniform.
+//! [`VarInfo::inferred`].
+//!
+//! A variable that is uniform by declaration (or as a shader parameter) but is given a varying
+//! value or assigned under varying control flow is a warning, not an error, and the variable
+//! becomes varying: peer compilers accept such shaders and exporters' shaders rely on it.
 //!
 //! Variables that a nested function reaches through `extern` keep their declared/default
 //! detail: the nested body may write them in ways the encloser's walk does not see.
 
 use crate::ast::*;
-use crate::builtins;
 use crate::diagnostic::Diagnostic;
 use crate::span::Span;
 use crate::types::Detail;
@@ -97,6 +100,7 @@ fn annotate_defaults(
         uniform_params: ctx.uniform_params,
         changed: false,
         report: None,
+        promoted: Vec::new(),
         varying_loops: HashSet::new(),
         loop_counter: 0,
         diverged: false,
@@ -181,6 +185,7 @@ fn run(
         uniform_params: ctx.uniform_params,
         changed: true,
         report: None,
+        promoted: Vec::new(),
         varying_loops: HashSet::new(),
         loop_counter: 0,
         diverged: false,
@@ -203,6 +208,7 @@ fn run(
     w.fn_diverged = false;
     w.block(body, false);
     let details = w.details.clone();
+    diags.append(&mut w.promoted);
     diags.extend(report);
     details
 }
@@ -221,6 +227,8 @@ struct Walker<'a, 'r> {
     changed: bool,
     /// `Some` on the final walk: where to report declared-uniform violations.
     report: Option<&'r mut Vec<Diagnostic>>,
+    /// Warnings for declared-uniform variables raised to varying (one per variable).
+    promoted: Vec<Diagnostic>,
     /// Loops (by walk order) whose body runs under varying control because of a varying
     /// `break`/`continue` inside.
     varying_loops: HashSet<usize>,
@@ -260,19 +268,20 @@ impl Walker<'_, '_> {
             return;
         }
         let incoming = if vc { Detail::Varying } else { detail };
-        if self.pinned_here.contains(&i) {
-            if self.details[i] == Detail::Uniform && incoming == Detail::Varying {
-                if let Some(rep) = self.report.as_deref_mut() {
-                    let name = &self.vars[i].name;
-                    let msg = if detail == Detail::Varying {
-                        format!("cannot assign a varying value to uniform variable '{name}'")
-                    } else {
-                        format!("cannot assign to uniform variable '{name}' under varying control flow (a varying condition, loop or lighting construct)")
-                    };
-                    rep.push(Diagnostic::error(span, msg));
-                }
-            }
-            return;
+        if self.pinned_here.contains(&i)
+            && self.details[i] == Detail::Uniform
+            && incoming == Detail::Varying
+        {
+            // Peer compilers accept this with a warning and make the variable varying, and
+            // exporter shaders (Liquid's liquidspot, Advanced RenderMan's terran.sl) rely on
+            // it; warned once, at the first such assignment.
+            let name = &self.vars[i].name;
+            let msg = if detail == Detail::Varying {
+                format!("uniform variable '{name}' is given a varying value; it becomes varying")
+            } else {
+                format!("uniform variable '{name}' is assigned under varying control flow (a varying condition, loop or lighting construct); it becomes varying")
+            };
+            self.promoted.push(Diagnostic::warning(span, msg));
         }
         if incoming == Detail::Varying && self.details[i] == Detail::Uniform {
             self.details[i] = Detail::Varying;
@@ -472,7 +481,7 @@ impl Walker<'_, '_> {
             None => Vec::new(),
         };
         let mut d = match &call.callee {
-            Some(Callee::Builtin(b)) if builtins::is_inherently_varying(&b.name) => Detail::Varying,
+            Some(Callee::Builtin(b)) if b.id.is_inherently_varying() => Detail::Varying,
             Some(Callee::User(id)) if self.reads.get(id.0 as usize).copied().unwrap_or(true) => {
                 Detail::Varying
             }

@@ -2,7 +2,7 @@
 //! reference text at test time, compiles without errors.
 //!
 //! The text is `../shared/reference/advanced-renderman-ch9-illumination-and-lights.txt`
-//! relative to the repository root (or `$ILLUME_REFERENCE`). A listing is a line starting
+//! relative to the repository root (or under `$ILLUME_SHARED`). A listing is a line starting
 //! `Listing 9.N` whose next non-blank line opens a ``` code block; a block that follows the
 //! first one with only blank lines between belongs to the same listing (ERRATA.md: Listing 9.5
 //! is split across a page break). Only the errata that say the printed listing is wrong are
@@ -13,26 +13,13 @@ use illume_sl::ast::{Callee, ExprKind, StmtKind};
 use illume_sl::types::{BaseType, Detail, ShaderKind};
 use illume_sl::{compile_str, Compiled, PpOptions};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
+/// The reference text, or `None` (skipped loudly; a failure under `CI=true`).
 fn reference_text() -> Option<String> {
-    let path = std::env::var_os("ILLUME_REFERENCE")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(
-                "../../../shared/reference/advanced-renderman-ch9-illumination-and-lights.txt",
-            )
-        });
-    match std::fs::read_to_string(&path) {
-        Ok(t) => Some(t),
-        Err(_) => {
-            eprintln!(
-                "\n\n*** SKIPPED: chapter 9 reference text not found at {} (set ILLUME_REFERENCE) ***\n\n",
-                path.display()
-            );
-            None
-        }
-    }
+    let path = illume_testenv::shared_file(
+        "reference/advanced-renderman-ch9-illumination-and-lights.txt",
+    )?;
+    Some(std::fs::read_to_string(path).unwrap())
 }
 
 /// Listing number (the `N` of `9.N`) → its code, blocks joined.

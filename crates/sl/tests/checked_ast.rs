@@ -481,7 +481,8 @@ fn a_varying_return_makes_only_later_statements_varying_control() {
     let o = Owner::Function(FuncId(0));
     assert_eq!(var(&p, o, "early").inferred, Detail::Uniform);
     assert_eq!(var(&p, o, "late").inferred, Detail::Varying);
-    // A declared-uniform assignment after the varying return is an error.
+    // A declared-uniform assignment after the varying return is a warning (issue 18
+    // leniency) and makes the variable varying.
     let out = compile_str(
         "r.sl",
         "float f(float x) { uniform float u = 0; if (x > 0) return 1; u = 2; return u; }",
@@ -489,8 +490,51 @@ fn a_varying_return_makes_only_later_statements_varying_control() {
     );
     assert_eq!(
         out.render_diagnostics(),
-        "r.sl:1:62: error: cannot assign to uniform variable 'u' under varying control flow (a varying condition, loop or lighting construct)\n"
+        "r.sl:1:62: warning: uniform variable 'u' is assigned under varying control flow (a varying condition, loop or lighting construct); it becomes varying\n"
     );
+    assert_eq!(var(&out.program, o, "u").inferred, Detail::Varying);
+    assert_eq!(var(&out.program, o, "u").declared, Some(Detail::Uniform));
+}
+
+/// Issue 18 leniencies that real shaders need (Liquid's liquidspot/liquidpoint, Advanced
+/// RenderMan's terran.sl, vendor extensions such as `bake`).
+#[test]
+fn leniencies_of_peer_compilers() {
+    // A uniform local given a varying value becomes varying, and so does what reads it.
+    let p = compile("surface s() { uniform float k = 1; k = k * t; float m = k; Ci = m; }");
+    assert_eq!(var(&p, S0, "k").inferred, Detail::Varying);
+    assert_eq!(var(&p, S0, "m").inferred, Detail::Varying);
+    // A nested function (and a top-level one) with a qualified return type.
+    let p = compile(
+        "uniform float half(float x) { return x / 2; }
+         surface s() { uniform float urand() { return 0.25; } Ci = half(urand()); }",
+    );
+    assert_eq!(p.functions.len(), 2);
+    assert_eq!(p.functions[1].name, "urand");
+    assert_eq!(p.functions[1].ret, Type::FLOAT);
+    // s and t are readable in imagers.
+    let p = compile("imager i() { Ci = color (s, t, 0); }");
+    assert_eq!(p.shaders[0].kind, illume_sl::types::ShaderKind::Imager);
+    // An unknown function is a warning; the call stays unresolved, typed from context.
+    let out = compile_str(
+        "b.sl",
+        "surface s() { color c = bake(\"map.ptc\", s, t, Ci); float f = bake(1); Ci = c; }",
+        &PpOptions::default(),
+    );
+    assert!(!out.has_errors(), "{}", out.render_diagnostics());
+    assert_eq!(out.diagnostics.len(), 2);
+    let bakes = calls(&out.program, "bake");
+    assert_eq!(bakes.len(), 2);
+    assert!(bakes.iter().all(|(_, c)| c.callee.is_none()));
+    assert_eq!(bakes[0].0.ty, Type::COLOR);
+    assert_eq!(bakes[1].0.ty, Type::FLOAT);
+    // But a function defined after its use is still an error.
+    let out = compile_str(
+        "l.sl",
+        "surface s() { Ci = later(); }\ncolor later() { return 1; }",
+        &PpOptions::default(),
+    );
+    assert!(out.has_errors());
 }
 
 #[test]

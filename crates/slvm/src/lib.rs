@@ -16,7 +16,6 @@ pub mod mathfunctions;
 pub mod noise;
 pub mod operators;
 pub mod spline;
-mod texture;
 mod value;
 
 pub use exec::{zero_of, CompiledShader, Exec, Messages};

@@ -15,7 +15,7 @@ fn hash_cell(cell: &[i32], seed: u32) -> u32 {
 
 /// A gradient component in [-1, 1] from bits of a hash.
 fn gradient(h: u32, axis: usize) -> f32 {
-    let bits = lowbias32(h.wrapping_add(axis as u32 * 0x68e3_1da4)) >> 8;
+    let bits = lowbias32(h.wrapping_add((axis as u32).wrapping_mul(0x68e3_1da4))) >> 8;
     bits as f32 / (1u32 << 23) as f32 - 1.0
 }
 

@@ -40,6 +40,22 @@ fn constant_surface_writes_ci_and_oi() {
     }
 }
 
+/// A surface shader that sets only `Ci` leaves `Oi = Os`, as PRMan, BMRT and Aqsis start it
+/// (Aqsis regression jobs Bug1664409 and Bug1741324 rely on it: with `Oi = 0` the sphere was
+/// transparent and its front and back summed to twice the colour).
+#[test]
+fn oi_starts_as_os() {
+    let mut g = ShadingGrid::new(3, 2);
+    for (i, os) in g.os.iter_mut().enumerate() {
+        *os = Vec3::new(1.0, 0.5, i as f32 / 8.0);
+    }
+    run_surface("surface c() { Ci = color(0.32); }", &mut g);
+    for i in 0..g.len() {
+        assert_eq!(g.ci[i], Vec3::splat(0.32));
+        assert_eq!(g.oi[i], Vec3::new(1.0, 0.5, i as f32 / 8.0), "point {i}");
+    }
+}
+
 #[test]
 fn varying_if_writes_only_its_points() {
     let mut g = ShadingGrid::new(4, 1); // s = 0, 1/3, 2/3, 1
@@ -115,4 +131,104 @@ fn random_depends_on_the_point_not_its_grid_index() {
     assert_ne!(a, c, "another grid gets other numbers");
     assert!(a.iter().all(|v| (0.0..1.0).contains(&v.x)));
     assert!(a.windows(2).any(|w| w[0] != w[1]), "varies over the grid");
+}
+
+/// Issue 18: a call to another renderer's extension (`bake`) compiles with a warning; running
+/// it is an error reported through the renderer's warnings and the call gives 0 — but only
+/// when a point reaches it.
+#[test]
+fn unknown_functions_are_an_error_only_when_reached() {
+    let run = |src: &str| {
+        let shader = compile(src, ShaderKind::Surface);
+        let (inst, _) = SlInstance::bind(shader, &[], DMat4::IDENTITY);
+        let sink = illume_shade::WarnOnce::new();
+        let mut env = ShadingEnv::new();
+        env.warnings = Some(&sink);
+        let mut g = ShadingGrid::new(2, 2);
+        let cache = LightCache::run(&[], &g, &env);
+        let lights = Lights::from_cache(&cache);
+        inst.shade_surface(&mut g, &lights, &env);
+        (g.ci.clone(), sink.messages())
+    };
+    let (ci, warnings) = run("surface c() { Ci = color (1, 0, 0) + bake(\"m.ptc\", s, t); }");
+    assert!(ci.iter().all(|c| *c == Vec3::X), "{ci:?}");
+    assert_eq!(
+        warnings,
+        ["shader `c`: error: call to unknown function `bake`; it returns 0"]
+    );
+    // Never reached (s never exceeds 1 on the grid): no error.
+    let (_, warnings) = run("surface c() { Ci = 1; if (s > 2) Ci = bake(1); }");
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
+/// Every overload of the built-in table reaches an implementation through its `BuiltinId`
+/// family: a call of each, written with arguments of that overload's types, runs without the
+/// executor's "not implemented" error. `arraylength` is the one table entry the executor does
+/// not implement yet (it returns 0 with that error).
+#[test]
+fn every_table_overload_is_dispatched_to_an_implementation() {
+    use illume_sl::builtins::{all, Slot};
+    use illume_sl::types::BaseType;
+    let var = |b: BaseType, array: bool| match (b, array) {
+        (BaseType::Float, false) => "vf",
+        (BaseType::Color, false) => "vc",
+        (BaseType::Point, false) => "vp",
+        (BaseType::Vector, false) => "vv",
+        (BaseType::Normal, false) => "vn",
+        (BaseType::Matrix, false) => "vm",
+        (BaseType::String, false) => "vs",
+        (BaseType::Float, true) => "af",
+        _ => "ac",
+    };
+    let bind = |s: Slot| match s {
+        Slot::Fixed(b) => b,
+        Slot::Generic | Slot::ContextReturn => BaseType::Color,
+        Slot::Geometric => BaseType::Normal,
+        Slot::Any => BaseType::Float,
+    };
+    let mut missing = Vec::new();
+    for ov in all() {
+        let args: Vec<&str> = ov
+            .params
+            .iter()
+            .map(|p| var(bind(p.slot), p.array))
+            .collect();
+        let call = format!("{}({})", ov.name, args.join(", "));
+        let ret = bind(ov.ret);
+        let stmt = if ret == BaseType::Void {
+            format!("{call};")
+        } else {
+            format!("{} r = {call};", ret.keyword())
+        };
+        // lightsource() may only be called inside illuminance; everything else runs at every
+        // point, outside it.
+        let body = if ov.name == "lightsource" {
+            format!("illuminance (P) {{ {stmt} }}")
+        } else {
+            stmt
+        };
+        let src = format!(
+            "surface c() {{ float vf = 0.5; color vc = 1; point vp = 0; vector vv = 1;
+                normal vn = 1; matrix vm = 1; string vs = \"\"; float af[4] = {{1, 2, 3, 4}};
+                color ac[4] = {{1, 1, 1, 1}}; {body} }}"
+        );
+        let shader = compile(&src, ShaderKind::Surface);
+        let (inst, _) = SlInstance::bind(shader, &[], DMat4::IDENTITY);
+        let sink = illume_shade::WarnOnce::new();
+        let mut env = ShadingEnv::new();
+        env.warnings = Some(&sink);
+        let mut g = ShadingGrid::new(3, 3);
+        let (sun, _) = light("distantlight", &[], DMat4::IDENTITY).unwrap();
+        let cache = LightCache::run(&[&sun], &g, &env);
+        let lights = Lights::from_cache(&cache);
+        inst.shade_surface(&mut g, &lights, &env);
+        if sink
+            .messages()
+            .iter()
+            .any(|m| m.contains("not implemented by the executor"))
+        {
+            missing.push(call);
+        }
+    }
+    assert_eq!(missing, ["arraylength(af)"]);
 }

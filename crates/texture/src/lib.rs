@@ -26,6 +26,7 @@ pub mod cache;
 pub mod cubeface;
 pub mod environment;
 pub mod filter;
+mod header_order;
 pub mod lookup;
 pub mod mipmap;
 pub mod request;

@@ -1,7 +1,8 @@
 //! The `.tx`/`.sm` container: a tiled (64×64), round-down mip-mapped, single-part OpenEXR file.
 //!
-//! Writing goes through the `exr` crate's image API (parallel compression) to a temporary name,
-//! then a rename, so an interrupted `txmake` never leaves a half-written texture. Reading is
+//! Writing goes through the `exr` crate's image API (parallel compression) into memory, puts the
+//! header's attributes in name order (so the same input gives the same bytes), then writes a
+//! temporary name and renames it, so an interrupted `txmake` never leaves a half-written texture. Reading is
 //! tile-granular: the header and offset table are parsed once, and each tile is fetched with one
 //! positioned read and decompressed on demand, so a lookup touches only the tiles it needs.
 
@@ -115,13 +116,26 @@ pub(crate) fn write_tx(
         AnyChannels::sort(list),
     );
     let image = Image::from_layer(layer);
-    let tmp = temp_name(path);
+    // Encoded in memory first: the header's attributes are put in a fixed order before any
+    // byte reaches the file (header_order.rs says why).
     use exr::image::write::WritableImage;
-    image.write().to_file(&tmp).map_err(|e| {
+    let format_error = |message: String| TextureError::Format {
+        path: path.display().to_string(),
+        message,
+    };
+    let mut bytes = Vec::new();
+    image
+        .write()
+        .to_buffered(Cursor::new(&mut bytes))
+        .map_err(|e| format_error(format!("cannot write OpenEXR texture: {e}")))?;
+    crate::header_order::sort_header_attributes(&mut bytes)
+        .map_err(|e| format_error(format!("cannot order the OpenEXR header: {e}")))?;
+    let tmp = temp_name(path);
+    std::fs::write(&tmp, &bytes).map_err(|source| {
         let _ = std::fs::remove_file(&tmp);
-        TextureError::Format {
-            path: path.display().to_string(),
-            message: format!("cannot write OpenEXR texture: {e}"),
+        TextureError::Io {
+            path: tmp.display().to_string(),
+            source,
         }
     })?;
     std::fs::rename(&tmp, path).map_err(|source| TextureError::Io {

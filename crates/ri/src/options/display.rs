@@ -1,0 +1,108 @@
+//! Display options (RI Spec 3.2 §4.1.2): sampling, the pixel filter, exposure, quantization
+//! and the display list.
+use crate::diagnostic::Diagnostics;
+use crate::options::{DisplaySpec, Options, QuantizeSpec};
+use illume_rib::{Request, Span};
+
+impl Options {
+    /// `PixelVariance`, `PixelSamples`, `PixelFilter`, `Exposure`, `Quantize` and `Display`.
+    pub(crate) fn display_option(
+        &mut self,
+        req: Request,
+        span: &Span,
+        diagnostics: &mut Diagnostics,
+    ) {
+        let name = req.name().to_string();
+        let o = self;
+        use Request::*;
+        match req {
+            PixelVariance(v) => o.pixel_variance = v,
+            PixelSamples { x, y } => {
+                o.pixel_samples = [x.round().max(1.0) as u32, y.round().max(1.0) as u32];
+                if o.pixel_samples[0] > 64 || o.pixel_samples[1] > 64 {
+                    diagnostics.warn(span, &name, "more than 64 samples per axis; clamped to 64");
+                    o.pixel_samples = o.pixel_samples.map(|s| s.min(64));
+                }
+            }
+            PixelFilter {
+                name: f,
+                xwidth,
+                ywidth,
+            } => {
+                const KNOWN: &[&str] = &[
+                    "box",
+                    "triangle",
+                    "catmull-rom",
+                    "gaussian",
+                    "sinc",
+                    "mitchell",
+                    "separable-catmull-rom",
+                ];
+                if !KNOWN.contains(&f.as_str()) {
+                    diagnostics.warn(span, &name, format!("unknown filter `{f}`, using gaussian"));
+                    o.filter = ("gaussian".into(), xwidth.max(1.0), ywidth.max(1.0));
+                } else if !(xwidth > 0.0 && ywidth > 0.0) {
+                    diagnostics.error(
+                        span,
+                        &name,
+                        format!("widths must be positive, found {xwidth} {ywidth}"),
+                    );
+                } else {
+                    o.filter = (f, xwidth.min(16.0), ywidth.min(16.0));
+                }
+            }
+            Exposure { gain, gamma } => {
+                if gamma > 0.0 {
+                    o.exposure = (gain, gamma);
+                } else {
+                    diagnostics.error(
+                        span,
+                        &name,
+                        format!("gamma must be positive, found {gamma}"),
+                    );
+                }
+            }
+            Quantize {
+                kind,
+                one,
+                min,
+                max,
+                dither,
+            } => {
+                let q = QuantizeSpec {
+                    one,
+                    min,
+                    max,
+                    dither,
+                };
+                match kind.as_str() {
+                    "rgba" => o.quantize_rgba = q,
+                    "z" => o.quantize_z = q,
+                    other => diagnostics.error(
+                        span,
+                        &name,
+                        format!("expected \"rgba\" or \"z\", found \"{other}\""),
+                    ),
+                }
+            }
+            Display {
+                name: file,
+                kind,
+                mode,
+                params,
+            } => {
+                let spec = DisplaySpec {
+                    name: file.trim_start_matches('+').to_string(),
+                    kind,
+                    mode,
+                    params,
+                };
+                if !file.starts_with('+') {
+                    o.displays.clear();
+                }
+                o.displays.push(spec);
+            }
+            _ => {}
+        }
+    }
+}
