@@ -7,7 +7,7 @@
 //! `cargo run --release --example shadow_compare` (a few seconds; times include the depth
 //! pass for maps).
 use glam::{DMat4, DVec3};
-use illume_reyes::{render, write_displays, RenderSettings, Rendered};
+use illume_render::{render, write_displays, RenderSettings, Rendered};
 use illume_ri::{from_rib_diagnostic, Ri};
 use std::time::Instant;
 

@@ -3,7 +3,7 @@
 //!
 //! Scenes: orthographic 200×200 over [-2,2]² (50 pixels per unit), box filter 1×1, 4×4
 //! jittered samples per pixel, so a pixel's alpha is its covered fraction to ±1/16 on an edge.
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 use illume_ri::{from_rib_diagnostic, Ri, Severity};
 mod support;
 use support::frames;

@@ -5,7 +5,7 @@
 //! pixel and a box filter of one pixel, so the alpha sum is the covered area in pixels. The
 //! threshold is 0.1% relative, as for the plain sphere in `render.rs`: the sampling error of
 //! a silhouette is a fraction of its ring of partly covered pixels (measured: ≤ 0.04%).
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 use illume_ri::{from_rib_diagnostic, Ri, Severity};
 use std::f64::consts::PI;
 mod support;

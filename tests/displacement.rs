@@ -1,7 +1,7 @@
 //! Displacement through real RIB (issue 10 part 2): the built-in `ripple` and `dented` shaders,
 //! `Attribute "displacementbound"` and its coordinate systems, and the hider's handling of a
 //! bound that is too small (warn once, re-bucket, same image).
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 use illume_ri::{from_rib_diagnostic, Diagnostic, Frame, Ri, Severity};
 mod support;
 

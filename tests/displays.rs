@@ -1,6 +1,6 @@
 //! Displays that other stages read back: `Display "shadow"` writes a shadow map directly.
 use glam::Vec3;
-use illume_reyes::{render, write_displays, RenderSettings};
+use illume_render::{render, write_displays, RenderSettings};
 mod support;
 
 use illume_texture::{LookupOptions, TextureCache, TextureKind};

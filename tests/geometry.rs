@@ -5,7 +5,7 @@
 //! against the exact area in pixels. Threshold 1e-3 relative unless a test says otherwise: the
 //! quadric sphere reaches it (tests/render.rs), and the error is sampling noise along the edge
 //! (a few pixels of a few thousand).
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 use std::f64::consts::PI;
 mod support;
 use support::frames;

@@ -8,7 +8,7 @@
 //! must pass. `tests/golden/update.sh` re-makes the PNGs after a deliberate change.
 mod support;
 
-use illume_reyes::{render, RenderSettings};
+use illume_render::{render, RenderSettings};
 use std::path::{Path, PathBuf};
 use toml_edit::{DocumentMut, Item, Table};
 
@@ -93,13 +93,13 @@ fn goldens() -> Vec<Golden> {
 /// Per channel (R, G, B, A): (max, mean) of |render − reference|.
 type Metric = [(f64, f64); 4];
 
-fn render_rib(rib: &str) -> illume_reyes::Rendered {
+fn render_rib(rib: &str) -> illume_render::Rendered {
     let frames = support::frames(rib, None);
     assert_eq!(frames.len(), 1, "a golden scene is one frame");
     render(&frames[0], &RenderSettings::default())
 }
 
-fn compare(r: &illume_reyes::Rendered, reference: &illume_imageio::Image, what: &str) -> Metric {
+fn compare(r: &illume_render::Rendered, reference: &illume_imageio::Image, what: &str) -> Metric {
     assert_eq!(
         (r.width, r.height, reference.channels.len()),
         (reference.width, reference.height, 4),

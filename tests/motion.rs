@@ -6,7 +6,7 @@
 //! area of (pixel ∩ polygon(t)). The reference integrates that in f64: the polygon's corners
 //! at time t (piecewise linear between the motion keys, as RenderMan interpolates), clipped to
 //! the pixel (Sutherland–Hodgman), midpoint rule over 2000 time steps.
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 mod support;
 use support::frames;
 

@@ -18,7 +18,7 @@ mod latlong;
 mod texture;
 
 use forms::scratch;
-use illume_reyes::Rendered;
+use illume_render::Rendered;
 use std::path::{Path, PathBuf};
 use support::run_rib;
 

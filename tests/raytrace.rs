@@ -15,7 +15,7 @@
 //!   log-log slope between −0.95 and −0.45 (−0.5 for independent samples; stratification
 //!   gives −0.75 for a shadow edge crossing the strata).
 //! * The same bits with 1 and 2 threads.
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 mod support;
 
 use support::frames;

@@ -1,5 +1,5 @@
 //! End-to-end: RIB text → parser → RI state → REYES hider, checked against closed forms.
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 mod support;
 
 use illume_ri::{from_rib_diagnostic, Ri};

@@ -6,7 +6,7 @@
 //! those 16 positions: that mean, in f64, is the reference. Interior pixels only (object
 //! radius < 0.9): near the silhouette a pixel is part background and the normal turns faster
 //! than any finite ShadingRate follows. Threshold 1/255: one 8-bit code value.
-use illume_reyes::{render, RenderSettings, Rendered};
+use illume_render::{render, RenderSettings, Rendered};
 mod support;
 
 use support::frames;

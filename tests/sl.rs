@@ -42,14 +42,14 @@ fn render_with(
         .collect();
     let frames = ri.take_frames();
     assert_eq!(frames.len(), 1);
-    let settings = illume_reyes::RenderSettings {
+    let settings = illume_render::RenderSettings {
         progress: None,
         textures,
     };
-    let r = illume_reyes::render(&frames[0], &settings);
+    let r = illume_render::render(&frames[0], &settings);
     // Only scenes that name a display write one (the others would all write `ri.tif`).
     if rib.contains("Display") {
-        for written in illume_reyes::write_displays(&frames[0], &r) {
+        for written in illume_render::write_displays(&frames[0], &r) {
             written.unwrap();
         }
     }

@@ -26,34 +26,34 @@ pub fn frames(rib: &str, crop: Option<[f32; 4]>) -> Vec<Frame> {
 }
 
 /// What `render` does with one RIB stream, through the same library loop
-/// (`illume_reyes::render_frames_in_order`): frames render in file order as soon as they end,
+/// (`illume_render::render_frames_in_order`): frames render in file order as soon as they end,
 /// their displays are written, and Make* requests between frames see the files earlier frames
 /// wrote. Asserts that no parse, RI, render or display error occurred.
 #[allow(dead_code)] // each test binary compiles this module; not all of them render pipelines
-pub fn run_rib(rib: &str) -> Vec<illume_reyes::Rendered> {
+pub fn run_rib(rib: &str) -> Vec<illume_render::Rendered> {
     let mut ri = Ri::new();
-    ri.set_texture_maker(illume_reyes::texture_maker(|_, _| {}));
+    ri.set_texture_maker(illume_render::texture_maker(|_, _| {}));
     let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
     let mut out = Vec::new();
-    illume_reyes::render_frames_in_order(
+    illume_render::render_frames_in_order(
         &mut ri,
         parser,
         |d| assert!(d.severity != Severity::Error, "{d}"),
         |frame| {
             let cache =
                 illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
-            let settings = illume_reyes::RenderSettings {
+            let settings = illume_render::RenderSettings {
                 progress: None,
                 textures: Some(&cache),
             };
-            let r = illume_reyes::render(&frame, &settings);
+            let r = illume_render::render(&frame, &settings);
             let errors: Vec<_> = r
                 .warnings
                 .iter()
                 .filter(|d| d.severity == Severity::Error)
                 .collect();
             assert!(errors.is_empty(), "{errors:?}");
-            for w in illume_reyes::write_displays(&frame, &r) {
+            for w in illume_render::write_displays(&frame, &r) {
                 w.unwrap();
             }
             out.push(r);
@@ -66,7 +66,7 @@ pub fn run_rib(rib: &str) -> Vec<illume_reyes::Rendered> {
 /// sphere at distance 6 seen with a 25° field of view, and that are not fully covered: the
 /// crack detector of the facing-pole tests (quadric and NURBS spheres).
 #[allow(dead_code)] // only the render and geometry tests look for cracks
-pub fn facing_pole_holes(r: &illume_reyes::Rendered) -> Vec<(usize, usize, f32)> {
+pub fn facing_pole_holes(r: &illume_render::Rendered) -> Vec<(usize, usize, f32)> {
     // Silhouette radius in raster: tan(asin(1/6)) against the 12.5° half field of view.
     let rad = (1.0f64 / 6.0).asin().tan() / 12.5f64.to_radians().tan() * 150.0;
     let mut holes = Vec::new();

@@ -7,7 +7,7 @@ use crate::error::FarmError;
 use crate::jobdir::{up_to_date, Config, JobDir};
 use crate::plan::{plan, todo, Plan};
 use crate::scene::read_scene;
-use illume_reyes::{Rendered, Tile};
+use illume_render::{Rendered, Tile};
 use illume_ri::{from_rib_diagnostic, Ri};
 use std::time::Instant;
 
@@ -133,7 +133,7 @@ fn write_frames(
             .tiles
             .iter()
             .map(|&t| {
-                illume_reyes::read_tile(&dir.root.join(&plan.tiles[t].file))
+                illume_render::read_tile(&dir.root.join(&plan.tiles[t].file))
                     .map_err(|e| e.to_string())
             })
             .collect();
@@ -148,7 +148,7 @@ fn write_frames(
         };
         let frame = displays_under(frame, &config.cwd);
         let mut ok = true;
-        for result in illume_reyes::write_displays(&frame, &rendered) {
+        for result in illume_render::write_displays(&frame, &rendered) {
             if let Err(e) = result {
                 report.errors.push(format!("{}: {e}", f.label));
                 ok = false;

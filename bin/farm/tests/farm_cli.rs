@@ -339,10 +339,10 @@ fn merge_refuses_incomplete_frames_then_matches_a_full_render_bit_for_bit() {
     // frame 2.
     let render_tile = |l: &TileLine| {
         let f = &frames_of(&scene, l.frame, Some(l.crop))[0];
-        let r = illume_reyes::render(f, &Default::default());
+        let r = illume_render::render(f, &Default::default());
         let path = job.join(&l.tile);
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        illume_reyes::write_tile(&path, &r, f.options.xres, f.options.yres).unwrap();
+        illume_render::write_tile(&path, &r, f.options.xres, f.options.yres).unwrap();
     };
     let (held, rendered): (Vec<&TileLine>, Vec<&TileLine>) = lines
         .iter()
@@ -370,11 +370,11 @@ fn merge_refuses_incomplete_frames_then_matches_a_full_render_bit_for_bit() {
     let reference = dir.join("reference");
     std::fs::create_dir_all(&reference).unwrap();
     for mut f in frames_of(&scene, None, None) {
-        let r = illume_reyes::render(&f, &Default::default());
+        let r = illume_render::render(&f, &Default::default());
         for d in &mut f.options.displays {
             d.name = reference.join(&d.name).display().to_string();
         }
-        assert!(illume_reyes::write_displays(&f, &r)
+        assert!(illume_render::write_displays(&f, &r)
             .iter()
             .all(|w| w.is_ok()));
     }

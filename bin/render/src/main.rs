@@ -1,4 +1,4 @@
-//! `render`: RIB files in, images out. A thin layer over `illume-ri` and `illume-reyes`.
+//! `render`: RIB files in, images out. A thin layer over `illume-ri` and `illume-render`.
 //!
 //! Exit codes: 0 clean, 1 rendered with errors, 2 usage error or fatal.
 #![forbid(unsafe_code)]
@@ -109,7 +109,7 @@ fn main() -> ExitCode {
         if args.no_make {
             ri.set_texture_maker(Box::new(|_, _| Ok(())));
         } else {
-            ri.set_texture_maker(illume_reyes::texture_maker(|request, warning| {
+            ri.set_texture_maker(illume_render::texture_maker(|request, warning| {
                 eprintln!("render: warning: {request}: {warning}")
             }));
         }
@@ -118,7 +118,7 @@ fn main() -> ExitCode {
         }
         // Parse time of a frame: from the end of the previous frame's render (or the start).
         let mut since_last_frame = Instant::now();
-        illume_reyes::render_frames_in_order(
+        illume_render::render_frames_in_order(
             &mut ri,
             parser,
             |d| eprintln!("{d}"),
@@ -188,12 +188,12 @@ fn render_frame(
     };
     // `limits texturememory` is in kilobytes.
     let cache = illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
-    let settings = illume_reyes::RenderSettings {
+    let settings = illume_render::RenderSettings {
         progress: Some(&progress),
         textures: Some(&cache),
     };
     let t = Instant::now();
-    let rendered = pool.install(|| illume_reyes::render(frame, &settings));
+    let rendered = pool.install(|| illume_render::render(frame, &settings));
     let render_seconds = t.elapsed().as_secs_f64();
     if let Some(b) = bar {
         b.finish_and_clear();
@@ -214,13 +214,13 @@ fn render_frame(
             return errors + 1;
         }
         let (xres, yres) = (frame.options.xres, frame.options.yres);
-        if let Err(e) = illume_reyes::write_tile(path, &rendered, xres, yres) {
+        if let Err(e) = illume_render::write_tile(path, &rendered, xres, yres) {
             eprintln!("render: error: {e}");
             errors += 1;
         }
         return errors;
     }
-    for result in illume_reyes::write_displays(frame, &rendered) {
+    for result in illume_render::write_displays(frame, &rendered) {
         match result {
             Ok(w) if w.framebuffer => {
                 eprintln!(

@@ -2,38 +2,32 @@
 //! until diceable at the ShadingRate → dice → shade the grid → bust into micropolygons →
 //! stratified jittered sampling → visible-point lists composited front to back → pixel filter
 //! → exposure. Buckets run in parallel (rayon); results are identical for any thread count.
+//!
+//! Shading is asked for through [`GridShader`]; binding shaders, textures, traced rays, display
+//! writing and the frame loop live in the driver (`illume-render`).
 #![forbid(unsafe_code)]
 
+mod bucket;
 mod csg;
-pub mod display;
+mod dice;
+mod displacement_bound;
+mod film;
 pub mod filter;
-mod frame_loop;
 mod hider;
 mod lens;
 mod motion;
-mod rayscene;
 mod refine;
-mod renderinfo;
+mod sample_buffer;
 pub mod sampling;
-mod shading;
-mod slshaders;
-mod tile;
+mod shader;
+mod visible;
 
-pub use display::{write_displays, DisplayError, WrittenDisplay};
+pub use film::PixelBlock;
 pub use filter::PixelFilter;
-pub use frame_loop::{render_frames_in_order, texture_maker};
-pub use tile::{read_tile, write_tile, Tile};
+pub use hider::Hider;
+pub use shader::{GridShader, Shaded};
 
-use illume_ri::{Diagnostic, Frame};
-
-/// Caller hooks for one render.
-#[derive(Default)]
-pub struct RenderSettings<'a> {
-    /// Called after each bucket with (buckets done, bucket count).
-    pub progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
-    /// The texture system shaders look maps up in (`None`: every lookup is a missing map).
-    pub textures: Option<&'a dyn illume_shade::TextureLookup>,
-}
+use illume_ri::Diagnostic;
 
 /// Counts and per-stage times (CPU seconds summed over threads, except `split_seconds`).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -50,7 +44,8 @@ pub struct Stats {
     pub shade_seconds: f64,
     pub sample_seconds: f64,
     pub filter_seconds: f64,
-    /// Shaded points whose colour came out NaN/Inf and was clamped (reported by `--stats`).
+    /// Shaded points whose colour came out NaN/Inf and was clamped (reported by `--stats`;
+    /// counted by the shader, so the driver fills it in).
     pub nonfinite: u64,
 }
 
@@ -68,9 +63,4 @@ pub struct Rendered {
     pub z: Vec<f32>,
     pub stats: Stats,
     pub warnings: Vec<Diagnostic>,
-}
-
-/// Renders one frame (uses the current rayon pool: `ThreadPool::install` to choose threads).
-pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
-    hider::render(frame, settings)
 }

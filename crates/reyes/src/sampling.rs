@@ -2,7 +2,7 @@
 //! only, never of the bucket or thread that computes it, so images are bit-identical for any
 //! thread count and any crop window.
 
-use illume_shade::lowbias32 as hash;
+use illume_core::hash::lowbias32 as hash;
 
 fn unit(h: u32) -> f32 {
     // 24 high bits → [0, 1).

@@ -1,10 +1,12 @@
-//! Grid shading through `illume-shade`: the frame's shaders are bound once (parameters parsed,
-//! unknown names reported once), then every diced grid is copied into a [`ShadingGrid`] and shaded
-//! with the lights that illuminate it. `Surface "null"` skips shading (depth passes keep `Os`).
+//! Grid shading through `illume-shade`, the hider's [`GridShader`]: the frame's shaders are
+//! bound once (parameters parsed, unknown names reported once), then every diced grid is copied
+//! into a [`ShadingGrid`] and shaded with the lights that illuminate it. `Surface "null"` skips
+//! shading (depth passes keep `Os`).
 use crate::rayscene::{self, RayScene};
 use crate::slshaders::SlShaders;
 use glam::{DMat4, Vec3};
 use illume_geom::Grid;
+use illume_reyes::{GridShader, Shaded};
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
     displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
@@ -13,13 +15,6 @@ use illume_shade::{
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
-
-pub(crate) struct Shaded {
-    /// Positions after displacement (the diced positions when there is none).
-    pub p: Vec<Vec3>,
-    pub ci: Vec<Vec3>,
-    pub oi: Vec<Vec3>,
-}
 
 /// A bound displacement, keyed like the surfaces; `None` when the name is unknown (warned).
 type BoundDisplacement = Option<Arc<Displacement>>;
@@ -80,6 +75,51 @@ fn projections(frame: &Frame) -> (DMat4, DMat4, DMat4) {
     )
 }
 
+/// Binds every built-in surface the frame's primitives name (keyed by the address of their
+/// shared `Arc<Shader>`); `.sl` surfaces are bound by [`SlShaders`]. An unknown or bad surface
+/// warns and falls back to `default_surface`; `Surface "null"` binds to `None`.
+fn bind_surfaces(
+    frame: &Frame,
+    sl: &SlShaders,
+    default_surface: &Arc<Surface>,
+    diags: &mut Vec<Diagnostic>,
+) -> HashMap<usize, BoundSurface> {
+    let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
+    for prim in &frame.primitives {
+        let Some(shader) = prim.attributes.surface.as_ref() else {
+            continue;
+        };
+        let key = Arc::as_ptr(shader) as usize;
+        if surfaces.contains_key(&key) || sl.has_surface(shader) {
+            continue;
+        }
+        let bound = if shader.name == "null" {
+            None
+        } else {
+            match illume_shade::surface(&shader.name, &shader.params) {
+                Ok((s, warnings)) => {
+                    diags.extend(
+                        warnings
+                            .into_iter()
+                            .map(|w| diagnostic(shader, "Surface", w)),
+                    );
+                    Some(Arc::new(s))
+                }
+                Err(e) => {
+                    diags.push(diagnostic(
+                        shader,
+                        "Surface",
+                        format!("{e}; using defaultsurface"),
+                    ));
+                    Some(default_surface.clone())
+                }
+            }
+        };
+        surfaces.insert(key, bound);
+    }
+    surfaces
+}
+
 impl<'a> FrameShading<'a> {
     /// Binds every surface and light of the frame; problems come back as warnings with the
     /// span of the `Surface`/`LightSource` request.
@@ -90,39 +130,7 @@ impl<'a> FrameShading<'a> {
         let mut diags = Vec::new();
         let sl = SlShaders::bind(frame, &mut diags);
         let default_surface = Arc::new(Surface::default_surface());
-        let mut surfaces: HashMap<usize, BoundSurface> = HashMap::new();
-        for prim in &frame.primitives {
-            let Some(shader) = prim.attributes.surface.as_ref() else {
-                continue;
-            };
-            let key = Arc::as_ptr(shader) as usize;
-            if surfaces.contains_key(&key) || sl.has_surface(shader) {
-                continue;
-            }
-            let bound = if shader.name == "null" {
-                None
-            } else {
-                match illume_shade::surface(&shader.name, &shader.params) {
-                    Ok((s, warnings)) => {
-                        diags.extend(
-                            warnings
-                                .into_iter()
-                                .map(|w| diagnostic(shader, "Surface", w)),
-                        );
-                        Some(Arc::new(s))
-                    }
-                    Err(e) => {
-                        diags.push(diagnostic(
-                            shader,
-                            "Surface",
-                            format!("{e}; using defaultsurface"),
-                        ));
-                        Some(default_surface.clone())
-                    }
-                }
-            };
-            surfaces.insert(key, bound);
-        }
+        let surfaces = bind_surfaces(frame, &sl, &default_surface, &mut diags);
         let mut displacements: HashMap<usize, BoundDisplacement> = HashMap::new();
         for prim in &frame.primitives {
             let Some(shader) = prim.attributes.displacement.as_ref() else {
@@ -423,5 +431,12 @@ impl<'a> FrameShading<'a> {
             ci: g.ci,
             oi: g.oi,
         }
+    }
+}
+
+/// The hider's view of the frame's shaders.
+impl GridShader for FrameShading<'_> {
+    fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
+        FrameShading::shade_grid(self, grid, attrs, flip, prim)
     }
 }

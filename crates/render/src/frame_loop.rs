@@ -4,7 +4,7 @@
 //! files earlier frames wrote. That is what lets one multi-frame RIB hold a whole multipass
 //! pipeline (depth pass, `MakeShadow`, beauty pass), as PRMan and Aqsis allow.
 //!
-//! This lives in `illume-reyes` because it is the one crate that knows both halves of the loop:
+//! This lives in `illume-render` because the driver knows both halves of the loop:
 //! the RI state machine that produces frames and the hider that turns them into images. `render`
 //! and the integration tests call it, so the order the tests check is the order users get.
 use illume_ri::{from_rib_diagnostic, Diagnostic, Frame, Ri, TextureMaker};

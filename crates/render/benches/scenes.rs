@@ -1,7 +1,7 @@
-//! Time per example scene and micropolygons per second: `cargo bench -p illume-reyes`.
+//! Time per example scene and micropolygons per second: `cargo bench -p illume-render`.
 //! Renders every `rib/*.rib` of the workspace (displays are not written) three times and
 //! prints the best wall time.
-use illume_reyes::{render, RenderSettings};
+use illume_render::{render, RenderSettings};
 use illume_ri::{from_rib_diagnostic, Ri};
 use std::time::Instant;
 

@@ -1,0 +1,56 @@
+//! The render driver around the REYES hider (`illume-reyes`): binds the frame's shaders
+//! (built-in and `.sl`), lights, textures and ray-traced shadow geometry into the hider's
+//! [`GridShader`](illume_reyes::GridShader); runs frames in file order; writes displays and
+//! farm tiles. The hider knows grids and samples; everything that knows what a shader, a
+//! texture file or an image format is lives here.
+#![forbid(unsafe_code)]
+
+pub mod display;
+mod frame_loop;
+mod rayscene;
+mod renderinfo;
+mod shading;
+mod slshaders;
+mod tile;
+
+pub use display::{write_displays, DisplayError, WrittenDisplay};
+pub use frame_loop::{render_frames_in_order, texture_maker};
+pub use illume_reyes::{PixelFilter, Rendered, Stats};
+pub use tile::{read_tile, write_tile, Tile};
+
+use illume_reyes::Hider;
+use illume_ri::{Diagnostic, Frame, Severity};
+use shading::FrameShading;
+use std::sync::atomic::Ordering::Relaxed;
+
+/// Caller hooks for one render.
+#[derive(Default)]
+pub struct RenderSettings<'a> {
+    /// Called after each bucket with (buckets done, bucket count).
+    pub progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
+    /// The texture system shaders look maps up in (`None`: every lookup is a missing map).
+    pub textures: Option<&'a dyn illume_shade::TextureLookup>,
+}
+
+/// Renders one frame (uses the current rayon pool: `ThreadPool::install` to choose threads).
+pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
+    let mut hider = Hider::new(frame);
+    let (shading, binding_warnings) = FrameShading::new(frame, settings.textures);
+    hider.warnings.extend(binding_warnings);
+    let mut rendered = hider.render(&shading, settings.progress);
+    rendered.stats.nonfinite = shading.nonfinite.load(Relaxed);
+    // Shading problems found while rendering (missing maps, unknown spaces), once each.
+    rendered.warnings.extend(
+        shading
+            .warnings
+            .messages()
+            .into_iter()
+            .map(|message| Diagnostic {
+                severity: Severity::Warning,
+                span: illume_rib::Span::synthetic(),
+                request: None,
+                message,
+            }),
+    );
+    rendered
+}

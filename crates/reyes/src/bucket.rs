@@ -1,0 +1,209 @@
+//! The bucket stage: the crop window cut into buckets, each listing the pieces that reach it,
+//! and one bucket rendered from its list. A piece's grid is shared by every bucket it reaches
+//! and freed when the last one is done.
+use crate::csg::{SolidResolver, NO_SOLID};
+use crate::dice::{dice_and_shade, ShadedGrid};
+use crate::displacement_bound::Overflow;
+use crate::film::{Film, PixelBlock};
+use crate::hider::{ns, Counters};
+use crate::lens::Lens;
+use crate::motion::sample_moving_grid;
+use crate::refine::Piece;
+use crate::sample_buffer::{SampleBuffer, SampleSetup};
+use crate::shader::GridShader;
+use crate::visible::composite;
+use illume_ri::Frame;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::Instant;
+
+/// The bucket grid over the crop region.
+pub(crate) struct BucketLayout {
+    /// Crop window x0 x1 y0 y1 (pixels).
+    crop: [u32; 4],
+    /// Bucket width and height (pixels).
+    size: [u32; 2],
+    count: [usize; 2],
+    /// Filter reach (pixels) added around each piece's raster bound.
+    margin: f32,
+}
+
+impl BucketLayout {
+    pub fn new(crop: [u32; 4], bucket_size: [u32; 2], margin: f32) -> BucketLayout {
+        let [cx0, cx1, cy0, cy1] = crop;
+        let [bw, bh] = bucket_size.map(|b| b.max(1));
+        let nbx = (cx1 - cx0).div_ceil(bw).max(1) as usize;
+        let nby = (cy1 - cy0).div_ceil(bh).max(1) as usize;
+        BucketLayout {
+            crop,
+            size: [bw, bh],
+            count: [nbx, nby],
+            margin,
+        }
+    }
+
+    /// The number of buckets.
+    pub fn bucket_count(&self) -> usize {
+        self.count[0] * self.count[1]
+    }
+
+    /// The pixels x0 x1 y0 y1 of bucket `b` (buckets row by row).
+    pub fn rect(&self, b: usize) -> [u32; 4] {
+        let [cx0, cx1, cy0, cy1] = self.crop;
+        let [bw, bh] = self.size;
+        let nbx = self.count[0];
+        let (bx, by) = ((b % nbx) as u32, (b / nbx) as u32);
+        let px0 = cx0 + bx * bw;
+        let py0 = cy0 + by * bh;
+        [px0, (px0 + bw).min(cx1), py0, (py0 + bh).min(cy1)]
+    }
+
+    /// Per bucket, the pieces whose padded raster bound overlaps it, nearest first.
+    pub fn lists(&self, pieces: &[Piece]) -> Vec<Vec<usize>> {
+        let [nbx, nby] = self.count;
+        let [ox, oy] = [self.crop[0] as f32, self.crop[2] as f32];
+        let [bw, bh] = self.size.map(|s| s as f32);
+        let m = self.margin;
+        let mut lists: Vec<Vec<usize>> = vec![Vec::new(); nbx * nby];
+        for (id, p) in pieces.iter().enumerate() {
+            let bx0 = ((p.raster[0] - m - ox) / bw).floor().max(0.0) as usize;
+            let bx1 = ((p.raster[1] + m - ox) / bw).floor();
+            let by0 = ((p.raster[2] - m - oy) / bh).floor().max(0.0) as usize;
+            let by1 = ((p.raster[3] + m - oy) / bh).floor();
+            if bx1 < 0.0 || by1 < 0.0 {
+                continue;
+            }
+            for by in by0..=(by1 as usize).min(nby - 1) {
+                for bx in bx0..=(bx1 as usize).min(nbx - 1) {
+                    lists[by * nbx + bx].push(id);
+                }
+            }
+        }
+        for l in &mut lists {
+            l.sort_by(|&a, &b| pieces[a].zmin.total_cmp(&pieces[b].zmin).then(a.cmp(&b)));
+        }
+        lists
+    }
+}
+
+/// A piece's grid, shared by the buckets it overlaps: diced and shaded by the first bucket
+/// that needs it, dropped when the last one is done (DESIGN.md, "Parallelism and memory").
+pub(crate) struct GridSlot {
+    grid: Mutex<Option<Option<Arc<ShadedGrid>>>>,
+    /// Buckets that still have to visit this piece.
+    remaining: AtomicUsize,
+    /// The grid's [`Overflow`], kept after the grid is freed for the re-bucketing pass.
+    pub(crate) overflow: OnceLock<Overflow>,
+    /// Whether some bucket diced and shaded the piece (not all culled it as occluded).
+    pub(crate) shaded: AtomicBool,
+}
+
+impl GridSlot {
+    pub(crate) fn new(remaining: usize) -> GridSlot {
+        GridSlot {
+            grid: Mutex::new(None),
+            remaining: AtomicUsize::new(remaining),
+            overflow: OnceLock::new(),
+            shaded: AtomicBool::new(false),
+        }
+    }
+
+    fn get(&self, make: impl FnOnce() -> Option<Arc<ShadedGrid>>) -> Option<Arc<ShadedGrid>> {
+        let mut g = self.grid.lock().unwrap_or_else(|e| e.into_inner());
+        let g = g.get_or_insert_with(make).clone();
+        self.shaded.store(true, Relaxed);
+        if let Some(o) = g.as_ref().and_then(|g| g.overflow) {
+            let _ = self.overflow.set(o);
+        }
+        g
+    }
+
+    /// One overlapping bucket is done; the last one frees the grid.
+    fn release(&self) {
+        if self.remaining.fetch_sub(1, Relaxed) == 1 {
+            *self.grid.lock().unwrap_or_else(|e| e.into_inner()) = None;
+        }
+    }
+}
+
+/// Renders one bucket: its pieces nearest first (skipping those behind everything opaque so
+/// far), each grid diced and shaded once for all buckets through `grids`, sampled, then the
+/// samples composited and developed into the bucket's pixels.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn render_bucket(
+    frame: &Frame,
+    shader: &dyn GridShader,
+    pieces: &[Piece],
+    grids: &[GridSlot],
+    list: &[usize],
+    rect: [u32; 4],
+    film: &Film,
+    setup: &SampleSetup,
+    lens: Option<&Lens>,
+    counters: &Counters,
+) -> PixelBlock {
+    let mut buf = SampleBuffer::new(rect, film.filter.radius(), setup);
+    let t_sample = Instant::now();
+    let mut shade_elapsed = 0u64;
+    for &id in list {
+        let piece = &pieces[id];
+        if piece.zmin > buf.max_opaque_z() {
+            counters.occluded.fetch_add(1, Relaxed);
+            continue;
+        }
+        let t = Instant::now();
+        let grid = grids[id].get(|| dice_and_shade(frame, shader, piece, counters));
+        shade_elapsed += ns(t);
+        let Some(g) = grid.as_deref() else { continue };
+        let hits = match &g.motion {
+            Some(m) if setup.blur => sample_moving_grid(g, m, id, &frame.camera, lens, &mut buf),
+            _ => buf.sample_still_grid(g, id),
+        };
+        counters.samples.fetch_add(hits, Relaxed);
+    }
+    counters
+        .sample_ns
+        .fetch_add(ns(t_sample).saturating_sub(shade_elapsed), Relaxed);
+    for &id in list {
+        grids[id].release();
+    }
+    // Composite each sample front to back, then filter into pixels.
+    let t = Instant::now();
+    let solids = SolidResolver::new(&frame.solids);
+    let solid_of = |order: u64| {
+        let prim = pieces[(order >> 32) as usize].prim_index;
+        let solid = frame.primitives.get(prim).and_then(|fp| fp.solid);
+        solid.unwrap_or(NO_SOLID)
+    };
+    let composited = composite(&mut buf.lists, &buf.opaque_z, solids.as_ref(), solid_of);
+    let block = film.develop(rect, &buf.region(), &composited);
+    counters.filter_ns.fetch_add(ns(t), Relaxed);
+    block
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn buckets_tile_the_crop_window_exactly_once() {
+        for (crop, size) in [
+            ([0, 64, 0, 48], [16, 16]),
+            ([5, 70, 3, 40], [16, 7]),
+            ([10, 11, 10, 11], [32, 32]),
+        ] {
+            let layout = BucketLayout::new(crop, size, 1.0);
+            let [cx0, cx1, cy0, cy1] = crop;
+            let mut hits = vec![0u32; ((cx1 - cx0) * (cy1 - cy0)) as usize];
+            for b in 0..layout.bucket_count() {
+                let [x0, x1, y0, y1] = layout.rect(b);
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        hits[((y - cy0) * (cx1 - cx0) + x - cx0) as usize] += 1;
+                    }
+                }
+            }
+            assert!(hits.iter().all(|&h| h == 1), "crop {crop:?} size {size:?}");
+        }
+    }
+}

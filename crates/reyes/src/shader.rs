@@ -1,0 +1,26 @@
+//! The one question the hider asks of the shading system: "shade this diced grid". The hider
+//! knows grids, attributes and samples; what a shader is (built-in, compiled `.sl`, lights,
+//! textures, traced rays) is the driver's business (`illume-render`), so this crate does not
+//! depend on the shading, texture or ray-tracing crates.
+use glam::Vec3;
+use illume_geom::Grid;
+use illume_ri::Attributes;
+
+/// A shaded grid's per-vertex results, index-aligned with the diced [`Grid`].
+#[derive(Clone, Debug, Default)]
+pub struct Shaded {
+    /// Camera-space positions after displacement (the diced positions when there is none).
+    pub p: Vec<Vec3>,
+    /// Output colour `Ci` (premultiplied by `Oi`, as the shader left it).
+    pub ci: Vec<Vec3>,
+    /// Output opacity `Oi`.
+    pub oi: Vec<Vec3>,
+}
+
+/// Shades diced grids for the hider. Called from many buckets at once, each grid once.
+pub trait GridShader: Sync {
+    /// Displaces and shades one grid of frame primitive `prim` (an index into
+    /// `Frame::primitives`). `flip` (±1) orients the geometric normals as the attributes'
+    /// `Orientation` says (camera space is left-handed, so `dPdu×dPdv` is flipped for "rh").
+    fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded;
+}
