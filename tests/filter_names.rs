@@ -10,7 +10,7 @@ use illume_rib::Request;
 use std::path::PathBuf;
 
 /// The frame's pixel filter as the hider builds it, and the diagnostics of the RIB.
-fn pixel_filter(name: &str) -> (illume_reyes::PixelFilter, Vec<String>) {
+fn pixel_filter(name: &str) -> (illume_render::PixelFilter, Vec<String>) {
     let rib = format!("Format 8 8 1\nPixelFilter \"{name}\" 3 3\nWorldBegin\nWorldEnd\n");
     let mut ri = Ri::new();
     for item in illume_rib::Parser::new(std::io::Cursor::new(rib.into_bytes()), "test.rib") {
@@ -27,7 +27,7 @@ fn pixel_filter(name: &str) -> (illume_reyes::PixelFilter, Vec<String>) {
         .collect();
     let frames = ri.take_frames();
     let (f, xw, yw) = &frames[0].options.filter;
-    (illume_reyes::PixelFilter::new(f, *xw, *yw), diags)
+    (illume_render::PixelFilter::new(f, *xw, *yw), diags)
 }
 
 #[test]
