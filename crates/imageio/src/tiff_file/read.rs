@@ -126,10 +126,13 @@ impl PixelFormat {
 
     /// The largest stored integer, which normalises integer samples to [0, 1] ([-1, 1] signed).
     fn max_value(&self) -> f64 {
-        let (kind, bits) = (self.kind, self.bits);
-        match (kind, bits) {
-            (SampleKind::Signed, b) => ((1u64 << (b - 1)) - 1) as f64,
-            (_, b) => ((1u64 << b) - 1) as f64,
+        // Float samples are values, not codes: nothing to normalise by. For integers the largest
+        // code is computed with a checked shift, since `1 << 64` overflows (64-bit samples).
+        let bits = self.bits.min(64) as u32;
+        match self.kind {
+            SampleKind::Float => 1.0,
+            SampleKind::Signed => u64::MAX.checked_shr(65 - bits.max(1)).unwrap_or(0) as f64,
+            SampleKind::Unsigned => u64::MAX.checked_shr(64 - bits).unwrap_or(0) as f64,
         }
     }
 }

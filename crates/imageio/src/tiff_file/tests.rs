@@ -109,3 +109,51 @@ fn big_endian_16bit_with_horizontal_predictor_decodes_exactly() {
         let _ = decode_tiff(Path::new("mm.tif"), &bytes[..len]);
     }
 }
+
+/// A little-endian ("II") TIFF of one 64-bit IEEE float sample per pixel (SampleFormat 3),
+/// uncompressed, one strip, built by hand from TIFF 6.0.
+fn float64_tiff(values: &[f64], width: u16) -> Vec<u8> {
+    let height = (values.len() / width as usize) as u32;
+    let mut t = b"II*\0".to_vec();
+    let data_at = 8u32;
+    let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let ifd_at = data_at + data.len() as u32;
+    t.extend(ifd_at.to_le_bytes());
+    t.extend(&data);
+    let entries: [(u16, u16, u32, u32); 10] = [
+        (256, 3, 1, width as u32),
+        (257, 4, 1, height),
+        (258, 3, 1, 64),
+        (259, 3, 1, 1),
+        (262, 3, 1, 1),
+        (273, 4, 1, data_at),
+        (277, 3, 1, 1),
+        (278, 4, 1, height),
+        (279, 4, 1, data.len() as u32),
+        (339, 3, 1, 3),
+    ];
+    t.extend((entries.len() as u16).to_le_bytes());
+    for (tag, kind, count, value) in entries {
+        t.extend(tag.to_le_bytes());
+        t.extend(kind.to_le_bytes());
+        t.extend(count.to_le_bytes());
+        t.extend(value.to_le_bytes());
+    }
+    t.extend(0u32.to_le_bytes());
+    t
+}
+
+#[test]
+fn float64_samples_decode_to_their_values_without_overflow() {
+    // 64-bit samples used to compute `(1 << 64) - 1` as the largest code: a panic in debug
+    // builds (bad input must never panic, and 64-bit float TIFFs are valid input).
+    let values = [0.25, 0.5, 0.75, -1.5, 2.0, 1e-3];
+    let bytes = float64_tiff(&values, 3);
+    let image = decode_tiff(Path::new("f64.tif"), &bytes).unwrap();
+    assert_eq!((image.width, image.height), (3, 2));
+    let want: Vec<f32> = values.iter().map(|&v| v as f32).collect();
+    assert_eq!(image.data, want);
+    for len in 0..bytes.len() - 1 {
+        let _ = decode_tiff(Path::new("f64.tif"), &bytes[..len]);
+    }
+}
