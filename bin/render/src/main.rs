@@ -187,7 +187,8 @@ fn render_frame(
         }
     };
     // `limits texturememory` is in kilobytes.
-    let cache = illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024);
+    let cache = illume_texture::TextureCache::new(frame.options.texture_memory as usize * 1024)
+        .with_searchpath(frame.options.texture_path.clone());
     let settings = illume_render::RenderSettings {
         progress: Some(&progress),
         textures: Some(&cache),

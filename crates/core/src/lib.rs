@@ -12,6 +12,7 @@
 //!   random stream.
 //! * [`noise`]: the one gradient noise (SL `noise`/`pnoise`/`cellnoise` and the built-in
 //!   shaders).
+//! * [`searchpath`]: finding a file on an `Option "searchpath"` list.
 //!
 //! Everything here is a leaf: it depends on `glam` only, so any crate may use it.
 #![forbid(unsafe_code)]
@@ -20,4 +21,5 @@ pub mod basis;
 pub mod filter;
 pub mod hash;
 pub mod noise;
+pub mod searchpath;
 pub mod spaces;

@@ -45,13 +45,35 @@ pub fn render_frames_in_order<I>(
 /// the file; its warnings (e.g. a deprecated `MakeBump`) go to `on_warning` with the request's
 /// name, errors become the request's RI error.
 pub fn texture_maker(mut on_warning: impl FnMut(&str, String) + 'static) -> TextureMaker {
-    Box::new(move |req, _options| {
+    Box::new(move |req, options| {
+        let req = &inputs_on_searchpath(req, &options.texture_path);
         let warnings = illume_texture::make_from_request(req).map_err(|e| e.to_string())?;
         for w in warnings {
             on_warning(req.name(), w);
         }
         Ok(())
     })
+}
+
+/// A `Make*` request whose input pictures are found on `Option "searchpath" "texture"` (as
+/// Aqsis does; real scenes keep their source images in a shared `maps` folder). Inputs that are
+/// not on the path stay as written, relative to the working directory.
+fn inputs_on_searchpath(req: &Request, texture_path: &[String]) -> Request {
+    let find = |name: &String| illume_core::searchpath::resolve(name, texture_path);
+    let mut req = req.clone();
+    match &mut req {
+        Request::MakeTexture { picture, .. }
+        | Request::MakeBump { picture, .. }
+        | Request::MakeLatLongEnvironment { picture, .. }
+        | Request::MakeShadow { picture, .. } => *picture = find(picture),
+        Request::MakeCubeFaceEnvironment { faces, .. } => {
+            for face in faces.iter_mut() {
+                *face = find(face);
+            }
+        }
+        _ => {}
+    }
+    req
 }
 
 #[cfg(test)]

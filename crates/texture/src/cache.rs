@@ -139,6 +139,8 @@ pub struct TextureCache {
     bytes_read: AtomicU64,
     evictions: AtomicU64,
     files_opened: AtomicU64,
+    /// `Option "searchpath" "texture"`: where relative names are looked for first.
+    searchpath: Vec<String>,
 }
 
 impl std::fmt::Debug for TextureCache {
@@ -196,7 +198,15 @@ impl TextureCache {
             bytes_read: AtomicU64::new(0),
             evictions: AtomicU64::new(0),
             files_opened: AtomicU64::new(0),
+            searchpath: Vec::new(),
         }
+    }
+
+    /// The same cache, finding relative texture names on `searchpath` (`Option "searchpath"
+    /// "texture"`) before the working directory.
+    pub fn with_searchpath(mut self, searchpath: Vec<String>) -> TextureCache {
+        self.searchpath = searchpath;
+        self
     }
 
     /// Changes the memory bound (`Option "limits" "texturememory"`).
@@ -243,7 +253,8 @@ impl TextureCache {
     }
 
     fn open(&self, name: &str) -> Result<TexFile, TextureError> {
-        let path = Path::new(name);
+        let found = illume_core::searchpath::find(name, &self.searchpath);
+        let path = found.as_deref().unwrap_or(Path::new(name));
         if !path.exists() {
             return Err(TextureError::Missing {
                 path: name.to_string(),
