@@ -43,7 +43,7 @@ fn warning(shader: &Shader, request: &str, message: String) -> Diagnostic {
 }
 
 /// Binds `shader` as an SL shader of `kind` if its `.sl` is on the searchpath and compiles.
-fn bind(
+pub(crate) fn bind(
     frame: &Frame,
     shader: &Shader,
     kind: ShaderKind,

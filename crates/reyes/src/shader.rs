@@ -4,6 +4,7 @@
 //! depend on the shading, texture or ray-tracing crates.
 use glam::Vec3;
 use illume_geom::Grid;
+use crate::film::PixelBlock;
 use illume_ri::Attributes;
 
 /// A shaded grid's per-vertex results, index-aligned with the diced [`Grid`].
@@ -23,4 +24,12 @@ pub trait GridShader: Sync {
     /// `Frame::primitives`). `flip` (±1) orients the geometric normals as the attributes'
     /// `Orientation` says (camera space is left-handed, so `dPdu×dPdv` is flipped for "rh").
     fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded;
+
+    /// Runs the frame's imager (RI Spec 3.2 `RiImager`) on one bucket's developed pixels:
+    /// after the pixel filter, before exposure and quantization. Pixels are premultiplied RGBA
+    /// at full-frame positions (`block.rect`), so the result does not depend on which thread
+    /// or in what order buckets finish. The default runs no imager.
+    fn image(&self, block: &mut PixelBlock) {
+        let _ = block;
+    }
 }

@@ -97,7 +97,7 @@ impl SlInstance {
     }
 
     /// The parameter values for one grid: defaults, then RIB values, then primitive variables.
-    fn params(&self, exec: &mut Exec, grid: &ShadingGrid) -> Vec<Value> {
+    pub(crate) fn params(&self, exec: &mut Exec, grid: &ShadingGrid) -> Vec<Value> {
         let def = self.shader.program.shader(self.shader.id);
         let mut values = exec.param_defaults(self.shader.id);
         for (k, v) in values.iter_mut().enumerate() {
@@ -135,7 +135,7 @@ impl SlInstance {
             .collect()
     }
 
-    fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
+    pub(crate) fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
         for p in &exec.problems {
             env.warn(&format!("shader `{name}`: {p}"));
         }
@@ -294,7 +294,7 @@ impl IntoPair for (Value, Value) {
     }
 }
 
-fn triple_vec(v: &Value, n: usize) -> Vec<Vec3> {
+pub(crate) fn triple_vec(v: &Value, n: usize) -> Vec<Vec3> {
     match v {
         Value::Triple(s) => s.to_varying(n),
         Value::Float(s) => s.to_varying(n).into_iter().map(Vec3::splat).collect(),
