@@ -1,7 +1,7 @@
 //! Polygons against exact areas, winding, variables and bad input.
 mod support;
 use glam::{DMat4, DVec3, Vec3};
-use illume_geom::{build, GeomError};
+use illume_geom::{build, BuildContext, GeomError};
 use illume_rib::{Param, Request, Value};
 use support::*;
 
@@ -168,11 +168,20 @@ fn bad_polygons_are_errors_with_counts() {
         params: vec![floats("P", &square)],
     };
     assert!(build(&r, &ctx()).is_err());
+    // A primitive variable with too few values is dropped with a warning; the polygon stays.
     let r = Request::Polygon {
         params: vec![floats("P", &square), floats("Cs", &[1.0; 5])],
     };
-    let e = build(&r, &ctx()).unwrap_err().to_string();
-    assert!(e.contains("\"Cs\" has 5 values, expected 12"), "{e}");
+    let warnings = std::cell::RefCell::new(Vec::new());
+    let c = BuildContext {
+        warnings: Some(&warnings),
+        ..ctx()
+    };
+    let built = build(&r, &c).unwrap();
+    assert_eq!(built.len(), 1);
+    assert!(built[0].dice(2, 2).cs.is_none(), "Cs was dropped");
+    let w = warnings.into_inner();
+    assert!(w[0].contains("\"Cs\" has 5 values, expected 12"), "{w:?}");
     let mut nan = square.clone();
     nan[4] = f32::NAN;
     assert!(build(
