@@ -1,7 +1,7 @@
 //! `Imager` (RI Spec 3.2 §4.1.4): the imager runs on every filtered pixel before exposure and
 //! quantization. Each test renders the same scene without the imager as the independent
 //! reference and checks the imager's closed form per pixel.
-use illume_render::{render, write_displays, Rendered, RenderSettings};
+use illume_render::{render, write_displays, RenderSettings, Rendered};
 use std::path::PathBuf;
 mod support;
 
@@ -165,7 +165,9 @@ fn an_unknown_imager_warns_and_renders_without_one() {
     let plain = pixels(&render_rib(&scene("", 0.8, 0.5)));
     let r = render_rib(&scene("Imager \"nosuchimager\"\n", 0.8, 0.5));
     assert!(
-        r.warnings.iter().any(|w| w.message.contains("nosuchimager")),
+        r.warnings
+            .iter()
+            .any(|w| w.message.contains("nosuchimager")),
         "{:?}",
         r.warnings
     );

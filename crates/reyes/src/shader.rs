@@ -2,9 +2,9 @@
 //! knows grids, attributes and samples; what a shader is (built-in, compiled `.sl`, lights,
 //! textures, traced rays) is the driver's business (`illume-render`), so this crate does not
 //! depend on the shading, texture or ray-tracing crates.
+use crate::film::PixelBlock;
 use glam::Vec3;
 use illume_geom::Grid;
-use crate::film::PixelBlock;
 use illume_ri::Attributes;
 
 /// A shaded grid's per-vertex results, index-aligned with the diced [`Grid`].

@@ -37,11 +37,7 @@ pub fn imager(name: &str, params: &[Param]) -> Result<(Imager, Vec<String>), Sha
             let white = ParamValue::Color(Vec3::ONE);
             let specs = [("background", white.clone()), ("bgcolor", white)];
             let (bound, warnings) = ShaderParams::bind(name, &specs, params, false);
-            let given = |n: &str| {
-                params
-                    .iter()
-                    .any(|p| p.name.rsplit(' ').next() == Some(n))
-            };
+            let given = |n: &str| params.iter().any(|p| p.name.rsplit(' ').next() == Some(n));
             let colour = if given("bgcolor") {
                 bound.vec3("bgcolor")
             } else {

@@ -26,11 +26,10 @@ pub fn imager_grid(rect: [u32; 4], resolution: [u32; 2]) -> ShadingGrid {
     let (nu, nv) = ((x1 - x0) as usize, (y1 - y0) as usize);
     let mut g = ShadingGrid::new(nu, nv);
     let (xres, yres) = (resolution[0].max(1) as f32, resolution[1].max(1) as f32);
-    for (i, (p, (s, t))) in g
-        .p
-        .iter_mut()
-        .zip(g.s.iter_mut().zip(g.t.iter_mut()))
-        .enumerate()
+    for (i, (p, (s, t))) in
+        g.p.iter_mut()
+            .zip(g.s.iter_mut().zip(g.t.iter_mut()))
+            .enumerate()
     {
         let x = (x0 as usize + i % nu.max(1)) as f32 + 0.5;
         let y = (y0 as usize + i / nu.max(1)) as f32 + 0.5;
@@ -56,7 +55,10 @@ impl SlInstance {
         let alpha_in: Vec<f32> = rgba.iter().map(|px| px[3]).collect();
         let mut g = grid.clone();
         g.os = alpha_in.iter().map(|&a| Vec3::splat(a)).collect();
-        let ci_in: Vec<Vec3> = rgba.iter().map(|px| Vec3::new(px[0], px[1], px[2])).collect();
+        let ci_in: Vec<Vec3> = rgba
+            .iter()
+            .map(|px| Vec3::new(px[0], px[1], px[2]))
+            .collect();
         let lights = Lights::default();
         let (ci, oi, alpha) = {
             let mut exec = Exec::new(&self.shader.program, &g, env, &lights);
