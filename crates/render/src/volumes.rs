@@ -182,7 +182,9 @@ impl Relight for GridRelight<'_> {
         g.n = g.ng.clone();
         g.set_incident_from_p(false);
         let cache = LightCache::run(self.builtin, &g, self.env);
-        let sl = self.sl.run_lights(self.indices, &g, self.env, self.messages);
+        let sl = self
+            .sl
+            .run_lights(self.indices, &g, self.env, self.messages);
         cache
             .lights
             .into_iter()
