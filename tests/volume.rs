@@ -299,3 +299,34 @@ fn marched_in_scattering_equals_the_single_scattering_integral() {
         );
     }
 }
+
+/// RI 3.2 §15.6 message passing: the surface's `atmosphere("level", x)` reads the SL
+/// atmosphere's parameter as bound (here its RIB value), and answers 0 without an atmosphere.
+#[test]
+fn the_surface_reads_the_atmospheres_parameters() {
+    let dir = shader_dir(
+        "message",
+        &[
+            ("tag.sl", "volume tag(float level = 0.5) { }\n"),
+            (
+                "reader.sl",
+                "surface reader() {
+                    float x = -1;
+                    Oi = 1;
+                    if (atmosphere(\"level\", x) == 1) Ci = x; else Ci = 0.9;
+                }\n",
+            ),
+        ],
+    );
+    let scene = |atmosphere: &str| {
+        let rib = format!(
+            "{}Format 4 4 1\nProjection \"perspective\" \"fov\" 20\nWorldBegin\n{atmosphere}\n\
+             Surface \"reader\"\nPolygon \"P\" [-9 -9 5  9 -9 5  9 9 5  -9 9 5]\nWorldEnd\n",
+            searchpath(&dir)
+        );
+        pixel(&render_rib(&rib), 1, 1)[0]
+    };
+    assert!((scene("Atmosphere \"tag\" \"level\" [0.3]") - 0.3).abs() < 1e-6);
+    assert!((scene("Atmosphere \"tag\"") - 0.5).abs() < 1e-6);
+    assert!((scene("") - 0.9).abs() < 1e-6);
+}
