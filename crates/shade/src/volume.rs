@@ -172,8 +172,8 @@ mod tests {
         for k in 0..4 {
             let t = (-before.p[k].as_dvec3().length() / 3.0).exp();
             let bg = [0.1f64, 0.2, 0.9];
-            for c in 0..3 {
-                let want = bg[c] + (f64::from(before.ci[k][c]) - bg[c]) * t;
+            for (c, bg) in bg.into_iter().enumerate() {
+                let want = bg + (f64::from(before.ci[k][c]) - bg) * t;
                 assert!((f64::from(g.ci[k][c]) - want).abs() < 1e-6, "{k} {c}");
             }
             assert!((g.oi[k] - Vec3::ONE).abs().max_element() < 1e-6);
