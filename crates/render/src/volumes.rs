@@ -135,6 +135,12 @@ impl FrameVolumes {
 
     /// Runs the volume shader in `slot` of `attrs` over `grid` (its `Ci`/`Oi` in place);
     /// returns the count of non-finite results repaired. Nothing happens without one.
+    ///
+    /// For `Atmosphere` the grid is the shaded surface grid. For `Interior`/`Exterior` on a
+    /// traced ray (the hook `trace()` is to call; not called yet), pass a one-row grid of the
+    /// rays: `p` where each ray segment ends, `i = p − origin` (the volume's `I`, whose length
+    /// is the distance through the volume), `ci`/`oi` the colour and opacity arriving there;
+    /// the attenuated values come back in `ci`/`oi`.
     pub fn volume_along(
         &self,
         attrs: &Attributes,
