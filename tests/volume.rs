@@ -196,13 +196,18 @@ const INTENSITY: f64 = 40.0;
 /// z = 10 under the `beam` atmosphere; with `occluder`, a square in the plane x = −4 covering
 /// the upper half (y > 0) of the beam, outside the view.
 fn beam_scene(dir: &Path, occluder: bool, stepsize: f64) -> Rendered {
+    render_rib(&beam_rib(dir, occluder, stepsize))
+}
+
+/// The RIB of [`beam_scene`].
+fn beam_rib(dir: &Path, occluder: bool, stepsize: f64) -> String {
     let [fx, fy, fz] = SPOT_FROM;
     let occluder = if occluder {
         "Polygon \"P\" [-4 0 3  -4 2 3  -4 2 7  -4 0 7]\n"
     } else {
         ""
     };
-    render_rib(&format!(
+    format!(
         "{}Format {BEAM_RES} {BEAM_RES} 1\nProjection \"perspective\" \"fov\" 40\n\
          PixelSamples 1 1\nPixelFilter \"box\" 1 1\nHider \"hidden\" \"jitter\" [0]\nWorldBegin\n\
          AttributeBegin\nAttribute \"light\" \"shadows\" [\"on\"]\n\
@@ -212,7 +217,7 @@ fn beam_scene(dir: &Path, occluder: bool, stepsize: f64) -> Rendered {
          ShadingInterpolation \"smooth\"\nColor 0 0 0\nSurface \"constant\"\n\
          Polygon \"P\" [-10 -10 10  10 -10 10  10 10 10  -10 10 10]\n{occluder}WorldEnd\n",
         searchpath(dir)
-    ))
+    )
 }
 
 /// Mean red over columns 20..30 (x > 0) of `rows`.
@@ -329,4 +334,23 @@ fn the_surface_reads_the_atmospheres_parameters() {
     assert!((scene("Atmosphere \"tag\" \"level\" [0.3]") - 0.3).abs() < 1e-6);
     assert!((scene("Atmosphere \"tag\"") - 0.5).abs() < 1e-6);
     assert!((scene("") - 0.9).abs() < 1e-6);
+}
+
+/// Re-running the lights inside a volume (shadow rays included) gives the same bits with one
+/// and two threads.
+#[test]
+fn marched_volumes_are_identical_for_one_and_two_threads() {
+    let dir = shader_dir("threads", &[("beam.sl", SL_BEAM)]);
+    let f = frames(&beam_rib(&dir, true, 0.05), None);
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| render(&f[0], &RenderSettings::default()))
+    };
+    let bits = |r: &Rendered| r.rgba.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    let (one, two) = (run(1), run(2));
+    assert!(one.rgba.iter().any(|&v| v > 0.01), "the beam shows");
+    assert_eq!(bits(&one), bits(&two));
 }
