@@ -28,7 +28,7 @@ impl FrameImager {
     pub fn bind(frame: &Frame, diags: &mut Vec<Diagnostic>) -> Option<FrameImager> {
         let shader = frame.options.imager.as_ref()?;
         let mut reported = HashSet::new();
-        let sl = slshaders::bind(
+        let sl = slshaders::bind_sl(
             frame,
             shader,
             ShaderKind::Imager,

@@ -66,9 +66,9 @@ impl SlInstance {
             exec.set_global(Global::Ci, Value::Triple(Slot::Varying(ci_in)));
             exec.set_global(Global::Oi, Value::Triple(Slot::Varying(g.os.clone())));
             exec.set_global(Global::alpha, Value::Float(Slot::Varying(alpha_in.clone())));
-            let params = self.params(&mut exec, &g);
+            let params = self.params_for(&mut exec, &g);
             exec.run_shader(self.shader.id, params);
-            Self::report(&exec, env, self.name());
+            Self::report_problems(&exec, env, self.name());
             let len = g.len();
             let alpha = match exec.global(Global::alpha) {
                 Value::Float(s) => s.to_varying(len),

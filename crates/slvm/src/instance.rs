@@ -97,7 +97,7 @@ impl SlInstance {
     }
 
     /// The parameter values for one grid: defaults, then RIB values, then primitive variables.
-    pub(crate) fn params(&self, exec: &mut Exec, grid: &ShadingGrid) -> Vec<Value> {
+    fn params(&self, exec: &mut Exec, grid: &ShadingGrid) -> Vec<Value> {
         let def = self.shader.program.shader(self.shader.id);
         let mut values = exec.param_defaults(self.shader.id);
         for (k, v) in values.iter_mut().enumerate() {
@@ -135,7 +135,16 @@ impl SlInstance {
             .collect()
     }
 
-    pub(crate) fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
+    /// [`SlInstance::params`] for the other entry points of the crate.
+    pub(crate) fn params_for(&self, exec: &mut Exec, grid: &ShadingGrid) -> Vec<Value> {
+        self.params(exec, grid)
+    }
+
+    pub(crate) fn report_problems(exec: &Exec, env: &ShadingEnv, name: &str) {
+        Self::report(exec, env, name);
+    }
+
+    fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
         for p in &exec.problems {
             env.warn(&format!("shader `{name}`: {p}"));
         }
