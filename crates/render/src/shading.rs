@@ -6,7 +6,7 @@ use crate::rayscene::{self, RayScene};
 use crate::slshaders::SlShaders;
 use glam::{DMat4, Vec3};
 use illume_geom::Grid;
-use illume_reyes::{GridShader, Shaded};
+use illume_reyes::{AovLayout, GridShader, Shaded};
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
     displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
@@ -52,7 +52,9 @@ pub(crate) struct FrameShading<'a> {
     pub warnings: WarnOnce,
     pub nonfinite: AtomicU64,
     /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
-    sl: SlShaders,
+    pub(crate) sl: SlShaders,
+    /// The output variables the displays ask for (none: no records are made).
+    pub(crate) aov: AovLayout,
 }
 
 fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
@@ -228,6 +230,7 @@ impl<'a> FrameShading<'a> {
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
             sl,
+            aov: AovLayout::default(),
         };
         if needs_rays {
             // Casters are displaced like the grids the camera sees, so a displaced surface
@@ -380,6 +383,7 @@ impl<'a> FrameShading<'a> {
                 p,
                 ci: vec![Vec3::ZERO; grid.len()],
                 oi: os,
+                aov: vec![0.0; grid.len() * self.aov.stride],
             };
         };
         let mut g = self.shading_grid(grid, attrs, flip);
@@ -403,6 +407,16 @@ impl<'a> FrameShading<'a> {
             cache.lights.push((proxy, samples));
             sl_outputs.push(outputs);
         }
+        // SL outputs a display names, filled by the SL surface as it runs.
+        let mut sl_wanted: Vec<(&str, Vec<f32>)> = match sl_surface {
+            Some(_) => self
+                .aov
+                .channels
+                .iter()
+                .map(|c| (c.name.as_str(), Vec::new()))
+                .collect(),
+            None => Vec::new(),
+        };
         let nonfinite = match sl_surface {
             Some(s) => {
                 let mut view = illume_slvm::Lights::from_cache(&cache);
@@ -418,10 +432,23 @@ impl<'a> FrameShading<'a> {
                         .map_or(Vec::new(), |d| d.parameter_values(&g, &env)),
                     ..Default::default()
                 };
-                s.shade_surface_with(&mut g, &view, &env, to_surface)
+                s.shade_surface_outputs(&mut g, &view, &env, to_surface, &mut sl_wanted)
                     .nonfinite
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
+        };
+        let aov = if self.aov.stride == 0 {
+            Vec::new()
+        } else {
+            let wants_components = self
+                .aov
+                .channels
+                .iter()
+                .any(|c| illume_shade::COMPONENT_NAMES.contains(&c.name.as_str()));
+            let components = (wants_components && sl_surface.is_none())
+                .then(|| illume_shade::surface_components(&surface, &g, &cache, &env))
+                .flatten();
+            crate::aov::records(&self.aov, &g, components.as_ref(), &sl_wanted)
         };
         if nonfinite > 0 {
             self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
@@ -430,6 +457,7 @@ impl<'a> FrameShading<'a> {
             p: g.p,
             ci: g.ci,
             oi: g.oi,
+            aov,
         }
     }
 }
