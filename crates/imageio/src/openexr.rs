@@ -42,7 +42,7 @@ pub(crate) fn write_exr(
         } else {
             FlatSamples::F16(values.map(|&v| f16::from_f32(v)).collect())
         };
-        let exr_name = if name.len() == 1 {
+        let exr_name = if matches!(name.as_str(), "r" | "g" | "b" | "a" | "z") {
             name.to_ascii_uppercase()
         } else {
             name.clone()
