@@ -246,6 +246,41 @@ mod tests {
     }
 
     #[test]
+    fn a_tile_with_aovs_round_trips_every_bit_and_rejects_a_cut() {
+        let dir = std::env::temp_dir().join(format!("illume-tile-aov-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("a.tile");
+        let mut r = rendered(2, 1, 5, 3);
+        r.aov_layout = AovLayout::new(vec![
+            AovChannel {
+                name: "N".into(),
+                components: 3,
+                colour: false,
+                premultiplied: false,
+            },
+            AovChannel {
+                name: "__diffuse".into(),
+                components: 3,
+                colour: true,
+                premultiplied: true,
+            },
+        ]);
+        r.aov = (0..15 * 6).map(|i| (i as f32).sin()).collect();
+        write_tile(&path, &r, 9, 6).unwrap();
+        let t = read_tile(&path).unwrap();
+        let bits = |v: &[f32]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+        assert_eq!(t.aov_layout, r.aov_layout);
+        assert_eq!(bits(&t.aov), bits(&r.aov));
+        assert_eq!(bits(&t.rgba), bits(&r.rgba));
+        let good = std::fs::read(&path).unwrap();
+        for cut in [HEADER_BYTES + 15 * 20 + 2, good.len() - 4] {
+            std::fs::write(&path, &good[..cut]).unwrap();
+            assert!(read_tile(&path).is_err(), "cut at {cut} accepted");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn truncated_or_foreign_tiles_are_errors() {
         let dir = std::env::temp_dir().join(format!("illume-tile-bad-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
