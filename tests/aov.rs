@@ -88,7 +88,11 @@ fn assert_components_sum_to_ci(case: &str, img: &Image, expect_reflection: bool)
         for (k, part) in parts.iter().enumerate() {
             let max = part.iter().copied().fold(0.0f32, f32::max);
             let wanted = k < 3 || expect_reflection;
-            assert_eq!(max > 1e-3, wanted, "{case}: component {k} channel {c} max {max}");
+            assert_eq!(
+                max > 1e-3,
+                wanted,
+                "{case}: component {k} channel {c} max {max}"
+            );
         }
     }
     eprintln!("{case}: max |Ci − Σ components| = {worst:e}");
@@ -161,8 +165,16 @@ fn pixel_centre(i: usize, j: usize) -> (f64, f64, bool) {
 #[test]
 fn n_p_and_z_of_an_orthographic_sphere_match_the_closed_form() {
     let (img, dir) = sphere_geometry("geometry", "rgba,N,P,z");
-    let (nx, ny, nz) = (channel(&img, "N.X"), channel(&img, "N.Y"), channel(&img, "N.Z"));
-    let (px, py, pz) = (channel(&img, "P.X"), channel(&img, "P.Y"), channel(&img, "P.Z"));
+    let (nx, ny, nz) = (
+        channel(&img, "N.X"),
+        channel(&img, "N.Y"),
+        channel(&img, "N.Z"),
+    );
+    let (px, py, pz) = (
+        channel(&img, "P.X"),
+        channel(&img, "P.Y"),
+        channel(&img, "P.Z"),
+    );
     let z = channel(&img, "z");
     let (mut worst_n, mut worst_p, mut worst_z, mut inside) = (0.0f64, 0.0f64, 0.0f64, 0);
     for j in 0..64 {
@@ -177,7 +189,11 @@ fn n_p_and_z_of_an_orthographic_sphere_match_the_closed_form() {
             let n = glam::DVec3::new(nx[k] as f64, ny[k] as f64, nz[k] as f64).normalize();
             worst_n = worst_n.max((n - glam::DVec3::new(x, y, front)).abs().max_element());
             let p = glam::DVec3::new(px[k] as f64, py[k] as f64, pz[k] as f64);
-            worst_p = worst_p.max((p - glam::DVec3::new(x, y, 5.0 + front)).abs().max_element());
+            worst_p = worst_p.max(
+                (p - glam::DVec3::new(x, y, 5.0 + front))
+                    .abs()
+                    .max_element(),
+            );
             worst_z = worst_z.max((z[k] as f64 - (5.0 + front)).abs());
         }
     }
@@ -223,18 +239,31 @@ WorldEnd
     let img = read_image(&exr).unwrap();
     for (beauty, aov) in [("r", "mine.R"), ("g", "mine.G"), ("b", "mine.B")] {
         let (a, b) = (channel(&img, beauty), channel(&img, aov));
-        let worst = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f32::max);
+        let worst = a
+            .iter()
+            .zip(&b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f32::max);
         assert!(worst <= 1e-6, "{aov} differs from {beauty} by {worst}");
     }
     // The blue channel is the constant the shader wrote (where the polygon covers the
     // pixel's whole filter: the border pixels also weigh empty samples).
     let alpha = channel(&img, "a");
     let blue = channel(&img, "mine.B");
-    let covered: Vec<f32> = (0..blue.len()).filter(|&p| alpha[p] >= 1.0).map(|p| blue[p]).collect();
+    let covered: Vec<f32> = (0..blue.len())
+        .filter(|&p| alpha[p] >= 1.0)
+        .map(|p| blue[p])
+        .collect();
     assert!(covered.len() > 500, "{}", covered.len());
-    assert!(covered.iter().all(|&v| (v - 0.25).abs() < 1e-6), "{covered:?}");
+    assert!(
+        covered.iter().all(|&v| (v - 0.25).abs() < 1e-6),
+        "{covered:?}"
+    );
     let s = channel(&img, "mine.R");
-    assert!(s.iter().copied().fold(0.0, f32::max) > 0.8, "s varies across the frame");
+    assert!(
+        s.iter().copied().fold(0.0, f32::max) > 0.8,
+        "s varies across the frame"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -263,7 +292,10 @@ WorldEnd
             let c = (y * crop.width + x) as usize * stride;
             let f = ((y + crop.y0) * full.width + x + crop.x0) as usize * stride;
             let bits = |v: &[f32]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(&crop.aov[c..c + stride]), bits(&full.aov[f..f + stride]));
+            assert_eq!(
+                bits(&crop.aov[c..c + stride]),
+                bits(&full.aov[f..f + stride])
+            );
         }
     }
 }
@@ -287,7 +319,11 @@ fn unused_aovs_cost_nothing_and_leave_the_beauty_unchanged() {
     assert_eq!(plain.stats.aov_bucket_peak_bytes, 0);
     assert!(with.stats.aov_bucket_peak_bytes > 0);
     let bits = |v: &[f32]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
-    assert_eq!(bits(&plain.rgba), bits(&with.rgba), "AOVs changed the beauty");
+    assert_eq!(
+        bits(&plain.rgba),
+        bits(&with.rgba),
+        "AOVs changed the beauty"
+    );
 }
 
 #[test]
@@ -312,9 +348,21 @@ WorldEnd
         .into_iter()
         .map(|r| r.expect_err("each display is impossible").to_string())
         .collect();
-    assert!(errors[0].contains("five.tif") && errors[0].contains("at most 4"), "{}", errors[0]);
-    assert!(errors[1].contains("normal.png") && errors[1].contains("PNG"), "{}", errors[1]);
-    assert!(errors[2].contains("bad.exr") && errors[2].contains("nosuchvariable"), "{}", errors[2]);
+    assert!(
+        errors[0].contains("five.tif") && errors[0].contains("at most 4"),
+        "{}",
+        errors[0]
+    );
+    assert!(
+        errors[1].contains("normal.png") && errors[1].contains("PNG"),
+        "{}",
+        errors[1]
+    );
+    assert!(
+        errors[2].contains("bad.exr") && errors[2].contains("nosuchvariable"),
+        "{}",
+        errors[2]
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -333,8 +381,20 @@ fn exrheader_and_oiiotool_read_the_aov_file() {
     let out = Command::new("exrheader").arg(&exr).output().unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{text}");
-    for name in ["N.X", "N.Y", "N.Z", "s,", "__diffuse.R", "__diffuse.G", "__diffuse.B", "A,"] {
-        assert!(text.contains(&format!("    {name}")), "exrheader lacks {name}: {text}");
+    for name in [
+        "N.X",
+        "N.Y",
+        "N.Z",
+        "s,",
+        "__diffuse.R",
+        "__diffuse.G",
+        "__diffuse.B",
+        "A,",
+    ] {
+        assert!(
+            text.contains(&format!("    {name}")),
+            "exrheader lacks {name}: {text}"
+        );
     }
     let out = Command::new("oiiotool")
         .args(["--info", "-v", "--stats"])
@@ -368,8 +428,66 @@ fn exrheader_and_oiiotool_read_the_aov_file() {
         let av = v.iter().sum::<f64>() / v.len() as f64;
         for (theirs, ours) in [(min[c], mn), (max[c], mx), (avg[c], av)] {
             // oiiotool prints 6 decimals.
-            assert!((theirs - ours).abs() <= 2e-6, "{name}: oiiotool {theirs} vs ours {ours}");
+            assert!(
+                (theirs - ours).abs() <= 2e-6,
+                "{name}: oiiotool {theirs} vs ours {ours}"
+            );
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn inline_declare_and_displaychannel_types_shape_the_channels() {
+    let dir = scratch("types");
+    std::fs::write(
+        dir.join("outs.sl"),
+        "surface outs (output varying float f = 0; output varying vector w = 0;\n\
+                        output varying color c = 0) {\n\
+           f = s; w = vector (1, 2, 3); c = color (t, 0, 0);\n\
+           Oi = Os; Ci = Os;\n\
+         }\n",
+    )
+    .unwrap();
+    let exr = dir.join("t.exr");
+    let rib = format!(
+        r#"Option "searchpath" "shader" ["{}"]
+Format 8 8 1
+Declare "w" "varying vector"
+DisplayChannel "color c"
+Display "{}" "openexr" "varying float f,w,c,Cs"
+WorldBegin
+Surface "outs"
+Polygon "P" [-2 -2 5  2 -2 5  2 2 5  -2 2 5]
+WorldEnd
+"#,
+        dir.display(),
+        exr.display()
+    );
+    support::run_rib(&rib);
+    let img = read_image(&exr).unwrap();
+    let mut names = img.channels.clone();
+    names.sort();
+    assert_eq!(
+        names,
+        ["c.b", "c.g", "c.r", "cs.b", "cs.g", "cs.r", "f", "w.x", "w.y", "w.z"]
+    );
+    assert!(channel(&img, "w.Y").iter().all(|&v| (v - 2.0).abs() < 1e-6));
+    // A DisplayChannel without a name is an error at its request.
+    let mut ri = illume_ri::Ri::new();
+    let parser = illume_rib::Parser::new(
+        std::io::Cursor::new(b"DisplayChannel \"color\"\n".to_vec()),
+        "bad.rib",
+    );
+    for item in parser {
+        ri.request(item.unwrap());
+    }
+    let d = ri.drain_diagnostics();
+    assert!(
+        d.iter().any(|d| d.severity == illume_ri::Severity::Error
+            && d.to_string().contains("bad.rib:1")
+            && d.to_string().contains("type name")),
+        "{d:?}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -38,7 +38,10 @@ pub fn assemble(
     let mut z = vec![f32::MAX; n];
     let mut covered = vec![0u8; n];
     // Every tile of a frame carries the same output variables (the same scene rendered them).
-    let aov_layout = tiles.first().map(|t| t.aov_layout.clone()).unwrap_or_default();
+    let aov_layout = tiles
+        .first()
+        .map(|t| t.aov_layout.clone())
+        .unwrap_or_default();
     let stride = aov_layout.stride;
     let mut aov = vec![0.0f32; n * stride];
     for t in tiles {

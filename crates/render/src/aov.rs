@@ -98,7 +98,12 @@ pub fn mode_items(d: &DisplaySpec, frame: &Frame, sl: &SlOutputs) -> Result<Vec<
     Ok(items)
 }
 
-fn variable(item: &str, d: &DisplaySpec, frame: &Frame, sl: &SlOutputs) -> Result<DisplayVar, String> {
+fn variable(
+    item: &str,
+    d: &DisplaySpec,
+    frame: &Frame,
+    sl: &SlOutputs,
+) -> Result<DisplayVar, String> {
     let var = |name: &str, kind, premultiplied| DisplayVar {
         name: name.to_string(),
         kind,
@@ -120,7 +125,12 @@ fn variable(item: &str, d: &DisplaySpec, frame: &Frame, sl: &SlOutputs) -> Resul
         }
         return typed(&name, decl.ty);
     }
-    if let Some(c) = frame.options.display_channels.iter().find(|c| c.name == item) {
+    if let Some(c) = frame
+        .options
+        .display_channels
+        .iter()
+        .find(|c| c.name == item)
+    {
         return typed(item, c.declaration.ty);
     }
     if let Some(&(_, k, p)) = GLOBALS.iter().find(|g| g.0 == item) {

@@ -26,7 +26,10 @@ pub(crate) fn aov_image(
         .iter()
         .filter(|i| matches!(i, ModeItem::Var(v) if v.kind == VarKind::Colour))
         .count();
-    let vars = items.iter().filter(|i| matches!(i, ModeItem::Var(_))).count();
+    let vars = items
+        .iter()
+        .filter(|i| matches!(i, ModeItem::Var(_)))
+        .count();
     let only_alpha_letters = items
         .iter()
         .all(|i| matches!(i, ModeItem::Var(_)) || matches!(i, ModeItem::Letters(l) if l == "a"));
@@ -75,7 +78,11 @@ pub(crate) fn aov_image(
         return Err(format!(
             "{kind} holds at most 4 channels, found {} ({}); use openexr",
             columns.len(),
-            columns.iter().map(|c| c.1.as_str()).collect::<Vec<_>>().join(",")
+            columns
+                .iter()
+                .map(|c| c.1.as_str())
+                .collect::<Vec<_>>()
+                .join(",")
         ));
     }
     let pixels = (r.width * r.height) as usize;

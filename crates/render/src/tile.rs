@@ -127,7 +127,11 @@ pub fn read_tile(path: &Path) -> Result<Tile, ImageError> {
     } else {
         (AovLayout::default(), Vec::new())
     };
-    let aov_bytes = if with_aov { bytes.len().saturating_sub(base) } else { 0 };
+    let aov_bytes = if with_aov {
+        bytes.len().saturating_sub(base)
+    } else {
+        0
+    };
     if bytes.len() != base + aov_bytes || (with_aov && aov_layout.stride == 0) {
         return Err(format_error(
             path,

@@ -131,7 +131,13 @@ mod tests {
     fn records_interpolate_per_component() {
         let values = [0.0, 10.0, 1.0, 20.0, 2.0, 30.0];
         let mut store = Vec::new();
-        push_record(&mut store, &values, 2, Some(([0, 1, 2], [0.5, 0.25, 0.25])), 0);
+        push_record(
+            &mut store,
+            &values,
+            2,
+            Some(([0, 1, 2], [0.5, 0.25, 0.25])),
+            0,
+        );
         push_record(&mut store, &values, 2, None, 2);
         assert_eq!(store, vec![0.75, 17.5, 2.0, 30.0]);
     }

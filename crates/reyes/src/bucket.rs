@@ -181,8 +181,13 @@ pub(crate) fn render_bucket(
     counters
         .aov_peak_bytes
         .fetch_max((buf.aov_store.len() * 4) as u64, Relaxed);
-    let (composited, aov_samples) =
-        composite(&mut buf.lists, &buf.opaque_z, solids.as_ref(), solid_of, aov_in);
+    let (composited, aov_samples) = composite(
+        &mut buf.lists,
+        &buf.opaque_z,
+        solids.as_ref(),
+        solid_of,
+        aov_in,
+    );
     let block = film.develop(rect, &buf.region(), &composited, (&aov_samples, aov.stride));
     counters.filter_ns.fetch_add(ns(t), Relaxed);
     block

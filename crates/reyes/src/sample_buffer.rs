@@ -223,8 +223,8 @@ impl SampleBuffer {
         let (c, o) = g.shaded_at(hit.idx, hit.w, hit.first);
         let stride = self.aov_stride;
         let mut aov = NO_AOV;
-        if stride > 0 {
-            let k = (self.aov_store.len() / stride) as u32;
+        if let Some(k) = self.aov_store.len().checked_div(stride) {
+            let k = k.min(NO_AOV as usize) as u32;
             if k < NO_AOV && g.push_aov(&mut self.aov_store, stride, hit.idx, hit.w, hit.first) {
                 aov = k;
             }

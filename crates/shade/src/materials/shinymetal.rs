@@ -76,13 +76,13 @@ pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let env_term = environment_term(ctx);
     let l = ctx.lights;
     let mut out = Components::new(g.len());
-    for i in 0..g.len() {
+    for (i, env) in env_term.into_iter().enumerate() {
         let nf = ctx.nf[i];
         out.ambient[i] = g.cs[i] * (ka.at(i) * l.ambient(i));
         out.diffuse[i] = g.cs[i] * (kd.at(i) * l.diffuse(i, nf));
-        out.specular[i] = g.cs[i]
-            * (ks.at(i) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model));
-        out.reflection[i] = g.cs[i] * env_term[i];
+        out.specular[i] =
+            g.cs[i] * (ks.at(i) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model));
+        out.reflection[i] = g.cs[i] * env;
     }
     out
 }
