@@ -5,6 +5,8 @@
 //! texture file or an image format is lives here.
 #![forbid(unsafe_code)]
 
+pub mod aov;
+mod aov_display;
 pub mod display;
 mod frame_loop;
 mod imaging;
@@ -37,8 +39,11 @@ pub struct RenderSettings<'a> {
 /// Renders one frame (uses the current rayon pool: `ThreadPool::install` to choose threads).
 pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let mut hider = Hider::new(frame);
-    let (shading, binding_warnings) = FrameShading::new(frame, settings.textures);
+    let (mut shading, binding_warnings) = FrameShading::new(frame, settings.textures);
     hider.warnings.extend(binding_warnings);
+    let (layout, _) = aov::frame_layout(frame, &shading.sl.surface_outputs());
+    shading.aov = layout.clone();
+    hider.set_aovs(layout);
     let mut rendered = hider.render(&shading, settings.progress);
     rendered.stats.nonfinite = shading.nonfinite.load(Relaxed);
     // Shading problems found while rendering (missing maps, unknown spaces), once each.

@@ -8,7 +8,7 @@ use crate::slshaders::SlShaders;
 use crate::volumes::{FrameVolumes, GridRelight, VolumeSlot};
 use glam::{DMat4, Vec3};
 use illume_geom::Grid;
-use illume_reyes::{GridShader, PixelBlock, Shaded};
+use illume_reyes::{AovLayout, GridShader, PixelBlock, Shaded};
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
     displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
@@ -54,9 +54,11 @@ pub(crate) struct FrameShading<'a> {
     pub warnings: WarnOnce,
     pub nonfinite: AtomicU64,
     /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
-    sl: SlShaders,
+    pub(crate) sl: SlShaders,
     /// The frame's `Imager`, run on each bucket's filtered pixels.
     imager: Option<FrameImager>,
+    /// The output variables the displays ask for (none: no records are made).
+    pub(crate) aov: AovLayout,
     /// `Atmosphere`/`Interior`/`Exterior` shaders.
     volumes: FrameVolumes,
 }
@@ -237,6 +239,7 @@ impl<'a> FrameShading<'a> {
             nonfinite: AtomicU64::new(0),
             sl,
             imager,
+            aov: AovLayout::default(),
             volumes,
         };
         if needs_rays {
@@ -397,6 +400,7 @@ impl<'a> FrameShading<'a> {
                 p,
                 ci: vec![Vec3::ZERO; grid.len()],
                 oi: os,
+                aov: vec![0.0; grid.len() * self.aov.stride],
             };
         };
         let mut g = self.shading_grid(grid, attrs, flip);
@@ -420,6 +424,16 @@ impl<'a> FrameShading<'a> {
             cache.lights.push((proxy, samples));
             sl_outputs.push(outputs);
         }
+        // SL outputs a display names, filled by the SL surface as it runs.
+        let mut sl_wanted: Vec<(&str, Vec<f32>)> = match sl_surface {
+            Some(_) => self
+                .aov
+                .channels
+                .iter()
+                .map(|c| (c.name.as_str(), Vec::new()))
+                .collect(),
+            None => Vec::new(),
+        };
         let mut view = illume_slvm::Lights::from_cache(&cache);
         for (light, outputs) in view.lights[builtin_count..].iter_mut().zip(&sl_outputs) {
             if let illume_slvm::LightSource::Builtin(request) = light.source {
@@ -436,7 +450,7 @@ impl<'a> FrameShading<'a> {
                     atmosphere: self.volumes.atmosphere_messages(attrs, &g, &env),
                     ..Default::default()
                 };
-                s.shade_surface_with(&mut g, &view, &env, to_surface)
+                s.shade_surface_outputs(&mut g, &view, &env, to_surface, &mut sl_wanted)
                     .nonfinite
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
@@ -457,6 +471,21 @@ impl<'a> FrameShading<'a> {
             &view,
             Some(&relight),
         );
+        // Records after the atmosphere: `Ci` is what the hider composites (the components
+        // are the surface's own, before any atmosphere).
+        let aov = if self.aov.stride == 0 {
+            Vec::new()
+        } else {
+            let wants_components = self
+                .aov
+                .channels
+                .iter()
+                .any(|c| illume_shade::COMPONENT_NAMES.contains(&c.name.as_str()));
+            let components = (wants_components && sl_surface.is_none())
+                .then(|| illume_shade::surface_components(&surface, &g, &cache, &env))
+                .flatten();
+            crate::aov::records(&self.aov, &g, components.as_ref(), &sl_wanted)
+        };
         if nonfinite > 0 {
             self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
         }
@@ -464,6 +493,7 @@ impl<'a> FrameShading<'a> {
             p: g.p,
             ci: g.ci,
             oi: g.oi,
+            aov,
         }
     }
 }

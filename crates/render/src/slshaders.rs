@@ -144,6 +144,19 @@ impl SlShaders {
         sl
     }
 
+    /// The float and triple `output` parameters of every SL surface of the frame (name,
+    /// floats, colour), sorted by name: the variables a display may name besides the globals.
+    pub fn surface_outputs(&self) -> crate::aov::SlOutputs {
+        let mut out: crate::aov::SlOutputs = self
+            .surfaces
+            .values()
+            .flat_map(|s| s.output_parameters())
+            .collect();
+        out.sort();
+        out.dedup_by(|a, b| a.0 == b.0);
+        out
+    }
+
     pub fn has_surface(&self, shader: &Arc<Shader>) -> bool {
         self.surfaces.contains_key(&(Arc::as_ptr(shader) as usize))
     }

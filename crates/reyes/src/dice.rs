@@ -22,6 +22,8 @@ pub(crate) struct ShadedGrid {
     pub(crate) pos: Vec<Vec3>,
     ci: Vec<Vec3>,
     oi: Vec<Vec3>,
+    /// Per-vertex AOV records ([`crate::AovLayout::stride`] floats each; empty without AOVs).
+    pub(crate) aov: Vec<f32>,
     /// Per micropolygon: culled as a back face (Sides 1).
     pub(crate) backface: Vec<bool>,
     /// The primitive solid this grid bounds ([`NO_SOLID`] for none).
@@ -72,6 +74,24 @@ impl ShadedGrid {
         } else {
             (self.ci[first], self.oi[first])
         }
+    }
+
+    /// Appends the AOV record at the hit to `store` (as [`ShadedGrid::shaded_at`] weighs
+    /// colour); `false` (nothing appended) when the grid has no records of that size.
+    pub(crate) fn push_aov(
+        &self,
+        store: &mut Vec<f32>,
+        stride: usize,
+        idx: [usize; 3],
+        w: [f64; 3],
+        first: usize,
+    ) -> bool {
+        if stride == 0 || self.aov.len() != self.ci.len() * stride {
+            return false;
+        }
+        let smooth = self.smooth.then(|| (idx, w.map(|x| x as f32)));
+        crate::aov::push_record(store, &self.aov, stride, smooth, first);
+        true
     }
 }
 
@@ -217,6 +237,7 @@ pub(crate) fn dice_and_shade(
         pos,
         ci: shaded.ci,
         oi: shaded.oi,
+        aov: shaded.aov,
         backface,
         solid,
         ccw_enters: flip > 0.0,

@@ -16,6 +16,9 @@ pub struct Shaded {
     pub ci: Vec<Vec3>,
     /// Output opacity `Oi`.
     pub oi: Vec<Vec3>,
+    /// The arbitrary output variables the hider was asked for ([`crate::AovLayout`]), one
+    /// record of `stride` floats per vertex; empty when no display names an AOV.
+    pub aov: Vec<f32>,
 }
 
 /// Shades diced grids for the hider. Called from many buckets at once, each grid once.

@@ -63,6 +63,7 @@ pub use lighting::{
     ward_anisotropic_term,
 };
 pub use materials::environment::{raysphere, RaySphere};
+pub use materials::{surface_components, Components, COMPONENT_NAMES};
 pub use mathfunctions::{mix, smoothstep};
 pub use noise::noise;
 pub use occlusion::Occlusion;

@@ -28,13 +28,26 @@ pub enum DepthFilter {
     Midpoint,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct DisplaySpec {
     pub name: String,
     /// `tiff`, `file`, `png`, `openexr`, `zfile`, `framebuffer`, …
     pub kind: String,
-    /// `rgb`, `rgba`, `a`, `z`, `rgbz`, …
+    /// `rgb`, `rgba`, `a`, `z`, `rgbz`, …, or comma-separated variables
+    /// (`"rgba,__diffuse,N"`, `"varying color __spec"`): see the driver's `aov.rs`.
     pub mode: String,
+    pub params: ParamList,
+    /// The `Declare`d types of the mode's variable names at the time of the `Display` (inline
+    /// declarations and built-in globals are resolved by the driver).
+    pub declared: Vec<(String, illume_rib::Declaration)>,
+}
+
+/// A `DisplayChannel` (PRMan): an output variable declared once, with the display parameters
+/// (`"filter"`, `"filterwidth"`, `"quantize"`, `"dither"`) every display naming it inherits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DisplayChannel {
+    pub name: String,
+    pub declaration: illume_rib::Declaration,
     pub params: ParamList,
 }
 
@@ -70,6 +83,8 @@ pub struct Options {
     pub quantize_rgba: QuantizeSpec,
     pub quantize_z: QuantizeSpec,
     pub displays: Vec<DisplaySpec>,
+    /// `DisplayChannel`s declared so far (a later declaration of a name replaces it).
+    pub display_channels: Vec<DisplayChannel>,
     pub jitter: bool,
     pub depth_filter: DepthFilter,
     pub bucket_size: [u32; 2],
@@ -124,6 +139,7 @@ impl Default for Options {
                 dither: 0.0,
             },
             displays: Vec::new(),
+            display_channels: Vec::new(),
             jitter: true,
             depth_filter: DepthFilter::Min,
             bucket_size: [16, 16],
@@ -210,7 +226,8 @@ impl Options {
             | PixelFilter { .. }
             | Exposure { .. }
             | Quantize { .. }
-            | Display { .. } => self.display_option(req, span, diagnostics),
+            | Display { .. }
+            | DisplayChannel { .. } => self.display_option(req, span, diagnostics),
             Hider { name: h, params } => self.hider(&name, &h, &params, span, diagnostics),
             Option { name: n, params } => self.user_option(&n, &params, span, diagnostics),
             _ => {}

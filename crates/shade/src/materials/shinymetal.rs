@@ -22,7 +22,7 @@
 //! | envrad | float | 100 |
 //! | texturename | string | "" (RI 3.2 name for a plain environment map) |
 use super::environment::{environment_lookup, sample_environment, EnvParams};
-use super::{envparams, f, s, SurfaceContext};
+use super::{envparams, f, s, Components, SurfaceContext};
 use crate::geometric::reflect;
 use crate::parameters::ParamValue;
 use crate::texturelookup::TextureOptions;
@@ -42,24 +42,19 @@ pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     p
 }
 
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+/// The reflection term `SampleEnvironment(P, R, Kr, blur, ENVPARAMS)` (or the RI 3.2
+/// shader's world-space `environment(texturename, R)`) per point, before `basecolor`.
+fn environment_term(ctx: &SurfaceContext) -> Vec<Vec3> {
     let g = ctx.grid;
     let p = ctx.params;
     let n = g.len();
-    let (ka, kd, ks, r, kr, blur) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-        p.float_on(g, "Kr"),
-        p.float_on(g, "blur"),
-    );
+    let (kr, blur) = (p.float_on(g, "Kr"), p.float_on(g, "blur"));
     let refl: Vec<Vec3> = (0..n).map(|i| reflect(-ctx.v[i], ctx.nf[i])).collect();
     let kr_v: Vec<f32> = (0..n).map(|i| kr.at(i)).collect();
     let blur_v: Vec<f32> = (0..n).map(|i| blur.at(i)).collect();
     let envname = p.string("envname");
     let texturename = p.string("texturename");
-    let env_term = if envname.is_empty() && !texturename.is_empty() {
+    if envname.is_empty() && !texturename.is_empty() {
         world_environment(ctx, texturename, &refl, &kr_v, &blur_v)
     } else {
         let params = EnvParams {
@@ -68,7 +63,44 @@ pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
             envrad: p.float("envrad"),
         };
         sample_environment(ctx.env, g, &refl, &kr_v, &blur_v, params)
-    };
+    }
+}
+
+/// The terms of [`shade`] apart, each times `basecolor` (`Cs`).
+pub(super) fn components(ctx: &SurfaceContext) -> Components {
+    let g = ctx.grid;
+    let p = ctx.params;
+    let (ka, kd, ks, r) = (
+        p.float_on(g, "Ka"),
+        p.float_on(g, "Kd"),
+        p.float_on(g, "Ks"),
+        p.float_on(g, "roughness"),
+    );
+    let env_term = environment_term(ctx);
+    let l = ctx.lights;
+    let mut out = Components::new(g.len());
+    for (i, env) in env_term.into_iter().enumerate() {
+        let nf = ctx.nf[i];
+        out.ambient[i] = g.cs[i] * (ka.at(i) * l.ambient(i));
+        out.diffuse[i] = g.cs[i] * (kd.at(i) * l.diffuse(i, nf));
+        out.specular[i] =
+            g.cs[i] * (ks.at(i) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model));
+        out.reflection[i] = g.cs[i] * env;
+    }
+    out
+}
+
+pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+    let g = ctx.grid;
+    let p = ctx.params;
+    let n = g.len();
+    let (ka, kd, ks, r) = (
+        p.float_on(g, "Ka"),
+        p.float_on(g, "Kd"),
+        p.float_on(g, "Ks"),
+        p.float_on(g, "roughness"),
+    );
+    let env_term = environment_term(ctx);
     let l = ctx.lights;
     (0..n)
         .map(|i| {
