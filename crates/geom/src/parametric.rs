@@ -395,7 +395,8 @@ fn fill_vars(g: &mut Grid, vars: &[SurfaceVar], us: &[f64], vs: &[f64]) {
         let triples =
             |d: &[f32]| -> Vec<Vec3> { d.chunks_exact(3).map(Vec3::from_slice).collect() };
         match (var.name.as_str(), var.ty, c) {
-            ("N", Type::Normal, 3) => {
+            (name @ ("N" | crate::grid::SMOOTH_N), Type::Normal, 3) => {
+                g.user_normals = name == "N";
                 g.n = triples(&data)
                     .into_iter()
                     .zip(&g.ng)

@@ -234,7 +234,7 @@ impl<'a> FrameShading<'a> {
             // casts its displaced shadow.
             let displaced = |prim: usize, grid: &Grid| {
                 let attrs = &frame.primitives[prim].attributes;
-                let flip = if attrs.orientation_rh { -1.0 } else { 1.0 };
+                let flip = frame.primitives[prim].normal_sign();
                 shading.displaced_positions(grid, attrs, flip, prim)
             };
             shading.rays = Some(RayScene::build(frame, &displaced));
@@ -290,7 +290,9 @@ impl<'a> FrameShading<'a> {
         let n = grid.len();
         let mut g = ShadingGrid::new(grid.nu, grid.nv);
         g.p.clone_from(&grid.p);
-        g.n = grid.n.iter().map(|v| *v * flip).collect();
+        // The user's N is theirs: only Ng and a default N follow the orientation.
+        let n_flip = if grid.user_normals { 1.0 } else { flip };
+        g.n = grid.n.iter().map(|v| *v * n_flip).collect();
         g.ng = grid.ng.iter().map(|v| *v * flip).collect();
         g.dpdu.clone_from(&grid.dpdu);
         g.dpdv.clone_from(&grid.dpdv);
