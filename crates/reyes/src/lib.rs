@@ -9,6 +9,7 @@
 
 mod bucket;
 mod csg;
+mod csg_eye;
 mod dice;
 mod displacement_bound;
 mod film;

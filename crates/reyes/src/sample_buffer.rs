@@ -25,6 +25,9 @@ pub(crate) struct SampleSetup {
     /// Camera clipping planes.
     pub near_far: [f32; 2],
     pub perspective: bool,
+    /// The primitive solids that contain the eye (see `csg_eye`): where each sample's CSG
+    /// state starts.
+    pub eye_in_solids: Vec<u32>,
 }
 
 pub(crate) struct SampleBuffer {
