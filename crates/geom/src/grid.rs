@@ -18,6 +18,13 @@ pub struct GridVar {
 /// not collide with a declared variable.
 pub const SMOOTH_N: &str = "N(smooth)";
 
+/// Surface variable names under which a primitive hands the dicer the `u`, `v` the shaders
+/// see when they are not the surface's own parameters: a polygon's are its object-space
+/// (x, y) (RI Spec 3.2 §5.1, as PRMan and Aqsis give). `du`, `dv` and `dPdu`, `dPdv` stay
+/// those of the surface parameters. Not valid RIB identifiers.
+pub const PARAM_U: &str = "u(object)";
+pub const PARAM_V: &str = "v(object)";
+
 /// `nu × nv` vertices, row-major with u fastest: vertex `(i, j)` is at `j * nu + i`.
 /// All positions and vectors are in camera space.
 #[derive(Clone, Debug, Default, PartialEq)]
