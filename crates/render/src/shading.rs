@@ -45,6 +45,8 @@ pub(crate) struct FrameShading<'a> {
     seed: u32,
     /// The camera's clipping planes, for `depth()`.
     clipping: (f32, f32),
+    /// `Option "shadow" "bias"`: SL `shadow()` calls that pass no `"bias"` use it.
+    shadow_bias: f32,
     /// What SL `option()` reads, and `attribute()` per distinct attribute set (keyed by the
     /// address of the frame's shared `Attributes`).
     options: illume_shade::RenderInfo,
@@ -216,6 +218,9 @@ impl<'a> FrameShading<'a> {
             rays: None,
             seed: frame.number.unwrap_or(0) as u32,
             clipping: (frame.camera.near as f32, frame.camera.far as f32),
+            // PRMan draws each lookup's bias between bias0 and bias1; one value, their mean,
+            // keeps the result deterministic.
+            shadow_bias: 0.5 * (frame.options.shadow_bias[0] + frame.options.shadow_bias[1]),
             options: crate::renderinfo::options(frame),
             attribute_info: {
                 let mut m = HashMap::new();
@@ -340,6 +345,7 @@ impl<'a> FrameShading<'a> {
         }
         env.seed = self.seed;
         env.clipping = self.clipping;
+        env.shadow_bias = self.shadow_bias;
         env.options = Some(&self.options);
         env.attributes = self
             .attribute_info
