@@ -11,6 +11,7 @@ use illume_render::{render, RenderSettings, Rendered};
 mod support;
 
 use std::path::PathBuf;
+use std::sync::OnceLock;
 use support::frames;
 
 /// Red where the probed normal faces the eye (`n·I < 0`), green where it faces away.
@@ -22,11 +23,16 @@ const PROBE: &str = r#"surface orient_probe(float use_Ng = 0) {
     Oi = 1;
 }"#;
 
-fn shader_dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("illume-orientation-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    std::fs::write(d.join("orient_probe.sl"), PROBE).unwrap();
-    d
+/// The folder holding `orient_probe.sl`, written once: the tests run in parallel, and one
+/// rewriting the file while another compiles it would hand that one a truncated shader.
+fn shader_dir() -> &'static PathBuf {
+    static DIR: OnceLock<PathBuf> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("illume-orientation-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::write(d.join("orient_probe.sl"), PROBE).unwrap();
+        d
+    })
 }
 
 /// 64×64 perspective render; `camera` goes before `WorldBegin` (after `Projection`), `body`
