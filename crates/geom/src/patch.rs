@@ -274,10 +274,11 @@ pub fn build_mesh(
                 &ctx.texture_coordinates,
                 [[i0, j0], [i1, j0], [i0, j1], [i1, j1]],
             );
-            out.push(Box::new(Parametric::new(
-                surface,
-                Arc::new(with_default_st(svars, st)),
-            )));
+            // u, v run over the whole mesh, as s, t do.
+            out.push(Box::new(
+                Parametric::new(surface, Arc::new(with_default_st(svars, st)))
+                    .spanning([i0, i1], [j0, j1]),
+            ));
         }
     }
     Ok(out)

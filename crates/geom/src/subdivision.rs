@@ -654,7 +654,7 @@ fn quads(
         }
         if !svars.iter().any(|v| v.name == "N") {
             svars.push(SurfaceVar {
-                name: "N".to_string(),
+                name: crate::grid::SMOOTH_N.to_string(),
                 ty: Type::Normal,
                 components: 3,
                 interp: Interp::Bilinear(order.map(|v| normals[v].to_array().to_vec())),

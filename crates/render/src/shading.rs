@@ -47,6 +47,8 @@ pub(crate) struct FrameShading<'a> {
     seed: u32,
     /// The camera's clipping planes, for `depth()`.
     clipping: (f32, f32),
+    /// `Option "shadow" "bias"`: SL `shadow()` calls that pass no `"bias"` use it.
+    shadow_bias: f32,
     /// What SL `option()` reads, and `attribute()` per distinct attribute set (keyed by the
     /// address of the frame's shared `Attributes`).
     options: illume_shade::RenderInfo,
@@ -226,6 +228,9 @@ impl<'a> FrameShading<'a> {
             rays: None,
             seed: frame.number.unwrap_or(0) as u32,
             clipping: (frame.camera.near as f32, frame.camera.far as f32),
+            // PRMan draws each lookup's bias between bias0 and bias1; one value, their mean,
+            // keeps the result deterministic.
+            shadow_bias: 0.5 * (frame.options.shadow_bias[0] + frame.options.shadow_bias[1]),
             options: crate::renderinfo::options(frame),
             attribute_info: {
                 let mut m = HashMap::new();
@@ -247,7 +252,7 @@ impl<'a> FrameShading<'a> {
             // casts its displaced shadow.
             let displaced = |prim: usize, grid: &Grid| {
                 let attrs = &frame.primitives[prim].attributes;
-                let flip = if attrs.orientation_rh { -1.0 } else { 1.0 };
+                let flip = frame.primitives[prim].normal_sign();
                 shading.displaced_positions(grid, attrs, flip, prim)
             };
             shading.rays = Some(RayScene::build(frame, &displaced));
@@ -303,7 +308,9 @@ impl<'a> FrameShading<'a> {
         let n = grid.len();
         let mut g = ShadingGrid::new(grid.nu, grid.nv);
         g.p.clone_from(&grid.p);
-        g.n = grid.n.iter().map(|v| *v * flip).collect();
+        // The user's N is theirs: only Ng and a default N follow the orientation.
+        let n_flip = if grid.user_normals { 1.0 } else { flip };
+        g.n = grid.n.iter().map(|v| *v * n_flip).collect();
         g.ng = grid.ng.iter().map(|v| *v * flip).collect();
         g.dpdu.clone_from(&grid.dpdu);
         g.dpdv.clone_from(&grid.dpdv);
@@ -361,6 +368,7 @@ impl<'a> FrameShading<'a> {
         env.warnings = Some(&self.warnings);
         env.seed = self.seed;
         env.clipping = self.clipping;
+        env.shadow_bias = self.shadow_bias;
         env.options = Some(&self.options);
         env
     }

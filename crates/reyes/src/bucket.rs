@@ -171,7 +171,7 @@ pub(crate) fn render_bucket(
     }
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();
-    let solids = SolidResolver::new(&frame.solids);
+    let solids = SolidResolver::new(&frame.solids, &setup.eye_in_solids);
     let solid_of = |order: u64| {
         let prim = pieces[(order >> 32) as usize].prim_index;
         let solid = frame.primitives.get(prim).and_then(|fp| fp.solid);

@@ -168,8 +168,11 @@ pub(crate) fn dice_and_shade(
     }
     let t = Instant::now();
     let a = &piece.attrs;
-    // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
-    let flip = if a.orientation_rh { -1.0 } else { 1.0 };
+    // The orientation resolved against the primitive's handedness (see `normal_sign`).
+    let flip = frame
+        .primitives
+        .get(piece.prim_index)
+        .map_or(1.0, |fp| fp.normal_sign());
     let shaded = shader.shade_grid(&grid, a, flip, piece.prim_index);
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;

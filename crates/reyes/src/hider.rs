@@ -191,6 +191,7 @@ impl<'f> Hider<'f> {
             near_far: [cam.near as f32, cam.far as f32],
             perspective: cam.is_perspective(),
             aov_stride: aov.stride,
+            eye_in_solids: crate::csg_eye::solids_containing_eye(frame),
         };
         let counters = Counters::default();
         let done = AtomicUsize::new(0);

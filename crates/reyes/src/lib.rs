@@ -10,6 +10,7 @@
 mod aov;
 mod bucket;
 mod csg;
+mod csg_eye;
 mod dice;
 mod displacement_bound;
 mod film;

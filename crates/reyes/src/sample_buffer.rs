@@ -27,6 +27,9 @@ pub(crate) struct SampleSetup {
     pub perspective: bool,
     /// Floats per visible point's AOV record (0: no AOVs).
     pub aov_stride: usize,
+    /// The primitive solids that contain the eye (see `csg_eye`): where each sample's CSG
+    /// state starts.
+    pub eye_in_solids: Vec<u32>,
 }
 
 pub(crate) struct SampleBuffer {

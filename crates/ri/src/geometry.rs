@@ -146,6 +146,7 @@ impl Ri {
         }
         let mut later: Vec<_> = later.into_iter().map(Vec::into_iter).collect();
         let solid = self.solid_leaf();
+        let mirrored = self.current_is_rh();
         for p in first {
             let motion = (!later.is_empty()).then(|| MotionKeys {
                 times: times.iter().map(|&t| t as f32).collect(),
@@ -160,6 +161,7 @@ impl Ri {
                 span: span.clone(),
                 solid,
                 motion,
+                mirrored,
             });
         }
     }

@@ -19,6 +19,8 @@ struct Options {
 impl Exec<'_> {
     fn texture_options(&mut self, call: &TextureCall, mask: &Mask) -> Options {
         let mut o = Options::default();
+        // Without a "bias" parameter, shadow() takes the frame's Option "shadow" "bias".
+        o.shadow.bias = self.env.shadow_bias;
         let (mut sw, mut tw) = (None, None);
         for p in &call.params {
             let name = match self.eval(&p.name, mask) {
