@@ -47,6 +47,7 @@ mod shadingenv;
 mod shadinggrid;
 mod surface;
 mod texturelookup;
+mod tracing;
 
 pub use areaemitter::AreaEmitter;
 pub use displacement::{displace, displacement, Displacement};
@@ -62,10 +63,11 @@ pub use lighting::{
 pub use materials::environment::{raysphere, RaySphere};
 pub use mathfunctions::{mix, smoothstep};
 pub use noise::noise;
-pub use occlusion::Occlusion;
+pub use occlusion::{stratified_sample, Occlusion};
 pub use parameters::ParamValue;
 pub use renderstate::{rendererinfo, InfoValue, RenderInfo};
 pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
+pub use tracing::{cosine_direction, segment, RayStart, RayTracer, TraceHit};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
