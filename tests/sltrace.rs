@@ -241,7 +241,7 @@ fn occlusion_rib(case: &str, wall: bool, samples: u32) -> String {
         String::new()
     };
     let world = format!(
-        "AttributeBegin\nSurface \"tocc\"\n\
+        "AttributeBegin\nSurface \"tocc\" \"samples\" [{samples}]\n\
          Polygon \"P\" [-3 -3 10  3 -3 10  3 3 10  -3 3 10]\nAttributeEnd\n{wall}"
     );
     scene(&dir, "", &world)
