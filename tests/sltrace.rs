@@ -94,7 +94,11 @@ fn reflected_cell(x: f64, y: f64) -> Option<i64> {
     let z = SPHERE_Z - (1.0 - r2).sqrt();
     let n = [x, y, z - SPHERE_Z];
     // I = (0, 0, 1): R = I − 2(I·N)N.
-    let r = [-2.0 * n[2] * n[0], -2.0 * n[2] * n[1], 1.0 - 2.0 * n[2] * n[2]];
+    let r = [
+        -2.0 * n[2] * n[0],
+        -2.0 * n[2] * n[1],
+        1.0 - 2.0 * n[2] * n[2],
+    ];
     if r[2] >= -1e-3 {
         return None;
     }
@@ -138,8 +142,16 @@ fn a_mirror_sphere_reflects_the_checkerboard_at_the_f64_reflected_hit() {
             }
         }
     }
-    assert!(checked > 1000, "only {checked} pixels away from checker edges");
-    assert!(bad.is_empty(), "{} of {checked} pixels differ: {:?}", bad.len(), &bad[..bad.len().min(10)]);
+    assert!(
+        checked > 1000,
+        "only {checked} pixels away from checker edges"
+    );
+    assert!(
+        bad.is_empty(),
+        "{} of {checked} pixels differ: {:?}",
+        bad.len(),
+        &bad[..bad.len().min(10)]
+    );
 }
 
 // ---- transmission and visibility -----------------------------------------------------------
@@ -194,7 +206,10 @@ fn transmission_through_a_half_opaque_occluder_is_one_half() {
     let os = "Opacity 0.5 0.5 0.5\nAttribute \"visibility\" \"transmission\" \"Os\"";
     for (case, mode) in [("trans-os", 0), ("vis-os", 1)] {
         let ([l, r], spread) = transmitted(case, mode, os);
-        assert!((l - 0.5).abs() < 1e-6 && (r - 1.0).abs() < 1e-6, "{case}: {l} {r}");
+        assert!(
+            (l - 0.5).abs() < 1e-6 && (r - 1.0).abs() < 1e-6,
+            "{case}: {l} {r}"
+        );
         assert!(spread < 1e-6, "{case}: spread {spread}");
     }
 }
@@ -213,7 +228,10 @@ fn opaque_transparent_and_ray_invisible_occluders() {
     ];
     for (case, attrs, want) in cases {
         let ([l, r], spread) = transmitted(case, 0, attrs);
-        assert!((l - want).abs() < 1e-6 && (r - 1.0).abs() < 1e-6, "{case}: {l} {r}");
+        assert!(
+            (l - want).abs() < 1e-6 && (r - 1.0).abs() < 1e-6,
+            "{case}: {l} {r}"
+        );
         assert!(spread < 1e-6, "{case}: spread {spread}");
     }
 }
@@ -250,11 +268,7 @@ fn occlusion_rib(case: &str, wall: bool, samples: u32) -> String {
 #[test]
 fn occlusion_is_zero_under_nothing() {
     let r = render_rib(&occlusion_rib("occ-open", false, 16));
-    let worst = r
-        .rgba
-        .chunks(4)
-        .map(|p| p[0].abs())
-        .fold(0.0f32, f32::max);
+    let worst = r.rgba.chunks(4).map(|p| p[0].abs()).fold(0.0f32, f32::max);
     assert_eq!(worst, 0.0);
 }
 
@@ -318,7 +332,10 @@ fn maxdepth_limits_the_bounces_between_two_facing_mirrors() {
         let r = render_rib(&scene(&dir, option, world));
         let want = 0.2 * f64::from(depth + 1);
         let got = pixel(&r, RES / 2, RES / 2)[0];
-        assert!((got - want).abs() < 1e-5, "maxdepth {depth}: {got}, want {want}");
+        assert!(
+            (got - want).abs() < 1e-5,
+            "maxdepth {depth}: {got}, want {want}"
+        );
     }
 }
 
@@ -366,7 +383,11 @@ fn an_sl_area_light_gives_the_builtin_arealight_penumbra() {
     let sl = render_rib(&area_scene(&dir, "tarea"));
     let builtin = render_rib(&area_scene(&dir, "arealight"));
     let lit = builtin.rgba.chunks(4).map(|p| p[0]).fold(0.0f32, f32::max);
-    let dark = builtin.rgba.chunks(4).map(|p| p[0]).fold(f32::MAX, f32::min);
+    let dark = builtin
+        .rgba
+        .chunks(4)
+        .map(|p| p[0])
+        .fold(f32::MAX, f32::min);
     // The view spans the penumbra: fully lit and fully shadowed pixels both appear.
     assert!(lit > 0.01 && dark < 0.1 * lit, "lit {lit}, dark {dark}");
     let worst = sl

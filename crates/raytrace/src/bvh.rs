@@ -190,7 +190,8 @@ impl Bvh {
         t_max: f64,
         keep: &dyn Fn(u32) -> bool,
     ) -> bool {
-        self.traverse(origin, dir, t_min, t_max, true, keep).is_some()
+        self.traverse(origin, dir, t_min, t_max, true, keep)
+            .is_some()
     }
 
     /// The nearest hit's `t` in `(t_min, t_max)`, if any (for tests and probes).
@@ -237,8 +238,7 @@ impl Bvh {
                     let start = node.offset as usize;
                     let end = start + node.count as usize;
                     for (t, &id) in self.triangles[start..end].iter().zip(&self.ids[start..end]) {
-                        let Some((hit, barycentric)) =
-                            t.intersect_barycentric(&ray, t_min, t_max)
+                        let Some((hit, barycentric)) = t.intersect_barycentric(&ray, t_min, t_max)
                         else {
                             continue;
                         };

@@ -80,7 +80,8 @@ impl Triangle {
         t_min: f64,
         t_max: f64,
     ) -> Option<f64> {
-        self.intersect_barycentric(ray, t_min, t_max).map(|(t, _)| t)
+        self.intersect_barycentric(ray, t_min, t_max)
+            .map(|(t, _)| t)
     }
 
     /// The hit's `t` and barycentric weights of `p[0]`, `p[1]`, `p[2]` (they sum to 1), for

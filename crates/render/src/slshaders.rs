@@ -5,8 +5,8 @@
 //! not compile warns once with its `file:line:col` diagnostics and the built-in (or
 //! `defaultsurface`) is used instead.
 use glam::DMat4;
-use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use glam::Vec3;
+use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{AreaEmitter, Light, LightSamples, ShadingEnv, ShadingGrid};
 use illume_sl::types::ShaderKind;
 use illume_slvm::library::ShaderLibrary;
@@ -207,8 +207,7 @@ impl SlShaders {
                     }
                 }
                 None => {
-                    let (samples, outputs) =
-                        l.shader.run_light_with(grid, &lenv, messages.clone());
+                    let (samples, outputs) = l.shader.run_light_with(grid, &lenv, messages.clone());
                     out.push((&l.proxy, samples, outputs));
                 }
             }
@@ -238,8 +237,14 @@ fn area_sample(
             emitter.sample(u1, u2)
         })
         .collect();
-    let position = points.iter().map(|s| s.map_or(Vec3::ZERO, |s| s.0)).collect();
-    let normal = points.iter().map(|s| s.map_or(Vec3::ZERO, |s| s.1)).collect();
+    let position = points
+        .iter()
+        .map(|s| s.map_or(Vec3::ZERO, |s| s.0))
+        .collect();
+    let normal = points
+        .iter()
+        .map(|s| s.map_or(Vec3::ZERO, |s| s.1))
+        .collect();
     let (mut samples, outputs) =
         l.shader
             .run_area_light_sample(grid, env, messages.clone(), position, normal);
@@ -254,4 +259,3 @@ fn area_sample(
     }
     (samples, outputs)
 }
-

@@ -69,5 +69,5 @@ pub use renderstate::{rendererinfo, InfoValue, RenderInfo};
 pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
-pub use tracing::{cosine_direction, segment, RayStart, RayTracer, TraceHit};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
+pub use tracing::{cosine_direction, segment, RayStart, RayTracer, TraceHit};

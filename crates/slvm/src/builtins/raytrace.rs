@@ -67,7 +67,9 @@ impl Exec<'_> {
                 // The ray that missed everything: this one, when it missed (one bounce).
                 let miss = |i: usize, v: Vec3| if hits[i].is_some() { Vec3::ZERO } else { v };
                 let pm = (0..n).map(|i| miss(i, *p.at(i))).collect();
-                let rm = (0..n).map(|i| miss(i, r.at(i).normalize_or_zero())).collect();
+                let rm = (0..n)
+                    .map(|i| miss(i, r.at(i).normalize_or_zero()))
+                    .collect();
                 self.write_back(&e[5], &Value::Triple(Slot::Varying(pm)), mask);
                 self.write_back(&e[6], &Value::Triple(Slot::Varying(rm)), mask);
                 triples(&hits, n, |h| h.3)
@@ -151,7 +153,11 @@ impl Exec<'_> {
             return 0.0;
         }
         let start = self.ray_start(i, p);
-        let maxdist = if maxdist > 0.0 { f64::from(maxdist) } else { 0.0 };
+        let maxdist = if maxdist > 0.0 {
+            f64::from(maxdist)
+        } else {
+            0.0
+        };
         let mut blocked = 0.0f64;
         for k in 0..samples {
             let u = illume_shade::stratified_sample(p, k, samples, OCCLUSION_STREAM ^ seed);
@@ -165,7 +171,13 @@ impl Exec<'_> {
     /// `shadow("raytrace", Ps)` in a light shader: the shadowed fraction between `Ps` and the
     /// light position `Ps − L`, over `samples` rays aimed within a disk of radius `blur·|L|`
     /// about that position.
-    pub(crate) fn raytraced_shadow(&self, mask: &Mask, ps: &Slot<Vec3>, samples: f32, blur: f32) -> Vec<f32> {
+    pub(crate) fn raytraced_shadow(
+        &self,
+        mask: &Mask,
+        ps: &Slot<Vec3>,
+        samples: f32,
+        blur: f32,
+    ) -> Vec<f32> {
         let Some(t) = self.env.tracer else {
             return vec![0.0; self.n];
         };
@@ -174,7 +186,11 @@ impl Exec<'_> {
             _ => Slot::Uniform(Vec3::ZERO),
         };
         let blur = f64::from(blur.max(0.0));
-        let count = if blur > 0.0 { samples.clamp(1.0, 4096.0) as u32 } else { 1 };
+        let count = if blur > 0.0 {
+            samples.clamp(1.0, 4096.0) as u32
+        } else {
+            1
+        };
         (0..self.n)
             .map(|i| {
                 if !mask.get(i) {
@@ -260,7 +276,9 @@ impl Exec<'_> {
             match (key == name, &value) {
                 (true, Value::Float(s)) => out = *s.at(0),
                 (true, _) => self.problem(format!("optional parameter \"{name}\" must be a float")),
-                (false, _) => self.problem(format!("unknown optional parameter \"{key}\"; ignored")),
+                (false, _) => {
+                    self.problem(format!("unknown optional parameter \"{key}\"; ignored"))
+                }
             }
         }
         out

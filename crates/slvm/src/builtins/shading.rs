@@ -53,7 +53,11 @@ impl Exec<'_> {
                 }))
             }
             (
-                B::Trace | B::Visibility | B::RayHitTest | B::FullTrace | B::Transmission
+                B::Trace
+                | B::Visibility
+                | B::RayHitTest
+                | B::FullTrace
+                | B::Transmission
                 | B::Occlusion,
                 _,
             ) => return self.raytrace(c),

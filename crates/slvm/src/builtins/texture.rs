@@ -259,7 +259,12 @@ impl Exec<'_> {
         let first = coords.first().map(triple_slot)?;
         match kind {
             TextureKind::Shadow => {
-                let v = self.raytraced_shadow(mask, &first, opts.shadow.samples, opts.blur.unwrap_or(0.0));
+                let v = self.raytraced_shadow(
+                    mask,
+                    &first,
+                    opts.shadow.samples,
+                    opts.blur.unwrap_or(0.0),
+                );
                 Some(if nch == 1 {
                     Value::Float(Slot::Varying(v))
                 } else {
