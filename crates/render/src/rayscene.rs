@@ -56,6 +56,8 @@ pub(crate) struct RayScene {
     tri_prim: Vec<u32>,
     tri_verts: Vec<[u32; 3]>,
     verts: Vec<HitVertex>,
+    /// Some shadow caster is seen as `1 − Os` (else transmission is all or nothing).
+    partial_casters: bool,
 }
 
 /// What rays see of one frame primitive.
@@ -139,6 +141,7 @@ impl RayScene {
             tri_prim: Vec::new(),
             tri_verts: Vec::new(),
             verts: Vec::new(),
+            partial_casters: false,
         };
         let mut all = Vec::new();
         for (index, (tris, verts, rays)) in per_prim.into_iter().enumerate() {
@@ -152,12 +155,18 @@ impl RayScene {
             scene.prims.push(rays);
         }
         scene.bvh = Bvh::new(all);
+        scene.partial_casters = scene.prims.iter().any(|p| p.shadow && p.shadow_os);
         scene
     }
 
     /// The shadow-ray offset for grids of frame primitive `prim`.
     pub fn offset(&self, prim: usize) -> f32 {
         self.prims.get(prim).map_or(0.0, |p| p.offset)
+    }
+
+    /// Whether any shadow caster is partly transparent to shadow rays (`"Os"`/`"shader"`).
+    pub fn has_partial_casters(&self) -> bool {
+        self.partial_casters
     }
 
     pub fn prim(&self, prim: usize) -> Option<&PrimRays> {

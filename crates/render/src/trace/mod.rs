@@ -103,14 +103,26 @@ impl RayTracer for FrameShading<'_> {
     fn transmission(&self, from: &RayStart, dir: DVec3, t_max: f64) -> Vec3 {
         let scene = self.ray_scene();
         let origin = self.ray_origin(scene, from, dir);
-        let keep = |id: u32| scene.prim_of(id).shadow;
+        // Opaque casters first, with an any-hit query (the common case, and the cheap one);
+        // then the partly transparent ones, nearest first.
+        let opaque = |id: u32| {
+            let p = scene.prim_of(id);
+            p.shadow && !p.shadow_os
+        };
+        if scene.bvh().occluded_by(origin, dir, 0.0, t_max, &opaque) {
+            return Vec3::ZERO;
+        }
+        if !scene.has_partial_casters() {
+            return Vec3::ONE;
+        }
+        let keep = |id: u32| {
+            let p = scene.prim_of(id);
+            p.shadow && p.shadow_os
+        };
         let mut through = Vec3::ONE;
         let mut t_min = 0.0;
         // Each surface crossed is found once: at most one step per triangle on the segment.
         while let Some(hit) = scene.bvh().nearest_hit(origin, dir, t_min, t_max, &keep) {
-            if !scene.prim_of(hit.triangle).shadow_os {
-                return Vec3::ZERO;
-            }
             let os = hit::hit_opacity(scene, &hit).clamp(Vec3::ZERO, Vec3::ONE);
             through *= Vec3::ONE - os;
             if through.max_element() < OPAQUE {
