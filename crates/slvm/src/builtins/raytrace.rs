@@ -79,7 +79,12 @@ impl Exec<'_> {
                 let maxdist = self.optional_float(c.pairs, mask, "maxdist", f32::INFINITY);
                 let seed = self.env.seed;
                 let v = self.per_point(mask, Vec3::ZERO, |x, i, t| {
-                    let k = samples.at(i).max(1.0).min(4096.0) as u32;
+                    let s = *samples.at(i);
+                    let k = if s.is_finite() {
+                        s.clamp(1.0, 4096.0) as u32
+                    } else {
+                        1
+                    };
                     Vec3::splat(x.occlusion_at(t, i, *p.at(i), *nn.at(i), k, maxdist, seed))
                 });
                 let Value::Triple(s) = v else { return None };
