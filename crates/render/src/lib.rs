@@ -13,6 +13,7 @@ mod shading;
 mod slshaders;
 mod tile;
 mod trace;
+mod volumes;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};
 pub use frame_loop::{render_frames_in_order, texture_maker};

@@ -48,6 +48,7 @@ mod shadinggrid;
 mod surface;
 mod texturelookup;
 mod tracing;
+mod volume;
 
 pub use areaemitter::AreaEmitter;
 pub use displacement::{displace, displacement, Displacement};
@@ -71,3 +72,4 @@ pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
 pub use tracing::{cosine_direction, segment, RayStart, RayTracer, TraceHit};
+pub use volume::{run_volume, volume, Volume};
