@@ -87,7 +87,7 @@ pub fn build_blobby(
         vertex: nleaf,
         facevarying: nleaf,
     };
-    let vars = resolve("Blobby", params, ctx.declarations, &counts)?;
+    let vars = resolve("Blobby", params, ctx.declarations, &counts, ctx.warnings)?;
     let mut warnings = Vec::new();
     if field.has_repeller() {
         warnings.push(

@@ -250,7 +250,7 @@ pub fn build_mesh(
         vertex: u.n * v.n,
         facevarying: patches.saturating_mul(4),
     };
-    let vars = resolve(request, params, ctx.declarations, &counts)?;
+    let vars = resolve(request, params, ctx.declarations, &counts, ctx.warnings)?;
     let pts = positions(request, &vars, &u, &v)?;
     let m = &ctx.camera_from_object;
     let mut out: Vec<Box<dyn Primitive>> = Vec::with_capacity(patches);

@@ -155,7 +155,7 @@ pub fn build_polygons(
         vertex: topo.vertices,
         facevarying: corners,
     };
-    let vars = resolve(name, params, ctx.declarations, &counts)?;
+    let vars = resolve(name, params, ctx.declarations, &counts, ctx.warnings)?;
     let pts = positions(name, &vars)?;
     let mut out: Vec<Box<dyn Primitive>> = Vec::new();
     for (f, face) in topo.faces.iter().enumerate() {

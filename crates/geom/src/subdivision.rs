@@ -404,7 +404,13 @@ pub fn control_mesh_of(
         vertex: nverts,
         facevarying: corners,
     };
-    let vars = resolve("SubdivisionMesh", params, ctx.declarations, &counts)?;
+    let vars = resolve(
+        "SubdivisionMesh",
+        params,
+        ctx.declarations,
+        &counts,
+        ctx.warnings,
+    )?;
     let mut mesh = control_mesh(faces, nverts, &vars, &ctx.camera_from_object).map_err(invalid)?;
     apply_tags(&mut mesh, &a).map_err(invalid)?;
     Ok((mesh, vars))

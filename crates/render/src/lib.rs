@@ -7,6 +7,7 @@
 
 pub mod display;
 mod frame_loop;
+mod imaging;
 mod rayscene;
 mod renderinfo;
 mod shading;

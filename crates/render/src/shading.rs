@@ -2,12 +2,13 @@
 //! bound once (parameters parsed, unknown names reported once), then every diced grid is copied
 //! into a [`ShadingGrid`] and shaded with the lights that illuminate it. `Surface "null"` skips
 //! shading (depth passes keep `Os`).
+use crate::imaging::FrameImager;
 use crate::rayscene::{self, RayScene};
 use crate::slshaders::SlShaders;
 use crate::volumes::{FrameVolumes, GridRelight, VolumeSlot};
 use glam::{DMat4, Vec3};
 use illume_geom::Grid;
-use illume_reyes::{GridShader, Shaded};
+use illume_reyes::{GridShader, PixelBlock, Shaded};
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
     displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
@@ -58,6 +59,8 @@ pub(crate) struct FrameShading<'a> {
     pub nonfinite: AtomicU64,
     /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
     sl: SlShaders,
+    /// The frame's `Imager`, run on each bucket's filtered pixels.
+    imager: Option<FrameImager>,
     /// `Atmosphere`/`Interior`/`Exterior` shaders.
     volumes: FrameVolumes,
 }
@@ -136,6 +139,7 @@ impl<'a> FrameShading<'a> {
     ) -> (FrameShading<'a>, Vec<Diagnostic>) {
         let mut diags = Vec::new();
         let sl = SlShaders::bind(frame, &mut diags);
+        let imager = FrameImager::bind(frame, &mut diags);
         let volumes = FrameVolumes::bind(frame, &mut diags);
         let default_surface = Arc::new(Surface::default_surface());
         let surfaces = bind_surfaces(frame, &sl, &default_surface, &mut diags);
@@ -238,6 +242,7 @@ impl<'a> FrameShading<'a> {
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
             sl,
+            imager,
             volumes,
         };
         if needs_rays {
@@ -354,14 +359,29 @@ impl<'a> FrameShading<'a> {
 
     /// The shading environment of frame primitive `prim`, "shader" space the surface's.
     fn env(&self, attrs: &Attributes, prim: usize) -> ShadingEnv<'_> {
-        let mut env = ShadingEnv::new();
-        env.camera_from_world = self.camera_from_world;
+        let mut env = self.frame_env();
         let camera_from_shader = attrs
             .surface
             .as_ref()
             .map_or(DMat4::IDENTITY, |s| s.camera_from_shader);
         env.camera_from_object = camera_from_shader;
         env.camera_from_shader = camera_from_shader;
+        if let Some(r) = self.rays.get() {
+            env.occlusion = Some(r);
+            env.ray_offset = r.offset(prim);
+        }
+        env.primitive = prim;
+        env.attributes = self
+            .attribute_info
+            .get(&(attrs as *const Attributes as usize));
+        env
+    }
+
+    /// What every shader of the frame shares (spaces, textures, options, warnings): the whole
+    /// environment of an imager, which belongs to no primitive.
+    pub(crate) fn frame_env(&self) -> ShadingEnv<'_> {
+        let mut env = ShadingEnv::new();
+        env.camera_from_world = self.camera_from_world;
         env.coordinate_systems = Some(&self.coordinate_systems);
         env.screen_from_camera = self.screen_from_camera;
         env.ndc_from_camera = self.ndc_from_camera;
@@ -369,18 +389,10 @@ impl<'a> FrameShading<'a> {
         env.specular_model = self.specular_model;
         env.textures = self.textures;
         env.warnings = Some(&self.warnings);
-        if let Some(r) = self.rays.get() {
-            env.occlusion = Some(r);
-            env.ray_offset = r.offset(prim);
-        }
         env.tracer = Some(self);
-        env.primitive = prim;
         env.seed = self.seed;
         env.clipping = self.clipping;
         env.options = Some(&self.options);
-        env.attributes = self
-            .attribute_info
-            .get(&(attrs as *const Attributes as usize));
         env
     }
 
@@ -530,5 +542,14 @@ impl<'a> FrameShading<'a> {
 impl GridShader for FrameShading<'_> {
     fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
         FrameShading::shade_grid(self, grid, attrs, flip, prim)
+    }
+
+    fn image(&self, block: &mut PixelBlock) {
+        if let Some(imager) = &self.imager {
+            let nonfinite = imager.run(block, &self.frame_env());
+            if nonfinite > 0 {
+                self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
+            }
+        }
     }
 }

@@ -176,7 +176,9 @@ pub(crate) fn render_bucket(
         solid.unwrap_or(NO_SOLID)
     };
     let composited = composite(&mut buf.lists, &buf.opaque_z, solids.as_ref(), solid_of);
-    let block = film.develop(rect, &buf.region(), &composited);
+    let mut block = film.develop(rect, &buf.region(), &composited);
+    // The imager (RI Spec 3.2 `RiImager`) sees filtered pixels before exposure (`Film::print`).
+    shader.image(&mut block);
     counters.filter_ns.fetch_add(ns(t), Relaxed);
     block
 }

@@ -34,6 +34,7 @@ mod error;
 mod geometric;
 mod hash;
 mod illuminance;
+mod imager;
 mod light;
 mod lighting;
 mod lights;
@@ -56,6 +57,7 @@ pub use error::ShadeError;
 pub use geometric::{faceforward, fresnel, normalize_or_zero, reflect, refract, Fresnel};
 pub use hash::lowbias32;
 pub use illuminance::{category_matches, Illuminance};
+pub use imager::{imager, Imager};
 pub use light::{light, AreaSample, Light, LightCache, LightSamples};
 pub use lighting::{
     blinn_phong, diffuse_term, glossy_term, oren_nayar_term, phong_term, specularbrdf,

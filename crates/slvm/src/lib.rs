@@ -9,6 +9,7 @@ pub mod colorspaces;
 mod exec;
 pub mod frontend;
 pub mod geometric;
+mod imager;
 mod instance;
 pub mod library;
 mod lights;
@@ -20,6 +21,7 @@ mod value;
 mod volume;
 
 pub use exec::{zero_of, CompiledShader, Exec, Messages};
+pub use imager::imager_grid;
 pub use instance::{string_value, SlInstance, SlStats};
 pub use lights::{in_cone, LightSource, LightView, Lights};
 pub use value::{zip2, zip3, Mask, Slot, Value};

@@ -1,5 +1,6 @@
 //! Frame options with the defaults of RI Spec 3.2 Table 4.1 (and the PRMan `Option`s that real
 //! scenes rely on: limits, searchpath, shadow).
+use crate::attributes::Shader;
 use crate::diagnostic::Diagnostics;
 use illume_rib::{ParamList, Request, Span};
 
@@ -91,6 +92,10 @@ pub struct Options {
     pub shutter: [f32; 2],
     /// `DepthOfField` fstop, focallength, focaldistance; `None` is a pinhole camera.
     pub depth_of_field: Option<[f32; 3]>,
+    /// `Imager name params` (RI Spec 3.2 §4.1.4): run on every pixel after the pixel filter,
+    /// before exposure and quantization. `None` (the default, or `Imager "null"`) runs none.
+    /// Imagers work in raster space, so `camera_from_shader` is the identity.
+    pub imager: Option<Shader>,
 }
 
 impl Default for Options {
@@ -137,6 +142,7 @@ impl Default for Options {
             trace_max_depth: 2,
             shutter: [0.0, 0.0],
             depth_of_field: None,
+            imager: None,
         }
     }
 }
@@ -185,7 +191,15 @@ impl Options {
             Projection { .. } | Clipping { .. } | Shutter { .. } | DepthOfField { .. } => {
                 self.camera_option(req, span, diagnostics)
             }
-            ClippingPlane { .. } | Imager { .. } | RelativeDetail(_) => {
+            Imager { name: n, params } => {
+                self.imager = (n != "null" && !n.is_empty()).then(|| Shader {
+                    name: n,
+                    params,
+                    camera_from_shader: glam::DMat4::IDENTITY,
+                    span: span.clone(),
+                });
+            }
+            ClippingPlane { .. } | RelativeDetail(_) => {
                 diagnostics.warn(span, &name, "not supported yet (ignored)");
             }
             ColorSamples { n_rgb, .. } if n_rgb.len() != 9 => {
