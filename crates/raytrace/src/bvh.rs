@@ -99,11 +99,24 @@ pub struct BvhStats {
     pub max_depth: usize,
 }
 
-/// A BVH over triangles that answers "is anything between here and there?".
+/// The nearest hit of a ray: where along it, which triangle (its index in the vector given to
+/// [`Bvh::new`]) and the barycentric weights of that triangle's three vertices at the hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub t: f64,
+    pub triangle: u32,
+    pub barycentric: [f64; 3],
+}
+
+/// A BVH over triangles that answers "is anything between here and there?" and "what does
+/// this ray hit first?".
 #[derive(Clone, Debug)]
 pub struct Bvh {
     nodes: Vec<Node>,
     triangles: Vec<Triangle>,
+    /// Per stored triangle: its index in the caller's vector (degenerate ones are dropped
+    /// and the rest reordered, so the caller's data is found through this).
+    ids: Vec<u32>,
     stats: BvhStats,
 }
 
@@ -120,10 +133,11 @@ impl Bvh {
     /// Builds the tree. Degenerate (zero-area) and non-finite triangles are dropped: they can
     /// block no ray and would poison the bounds.
     pub fn new(triangles: Vec<Triangle>) -> Bvh {
-        let tris: Vec<Triangle> = triangles
+        let (tris, input_ids): (Vec<Triangle>, Vec<u32>) = triangles
             .into_iter()
-            .filter(|t| t.p.iter().all(|p| p.is_finite()) && t.double_area() > 0.0)
-            .collect();
+            .zip(0u32..)
+            .filter(|(t, _)| t.p.iter().all(|p| p.is_finite()) && t.double_area() > 0.0)
+            .unzip();
         let bounds: Vec<Aabb> = tris.iter().map(Aabb::of).collect();
         let centroids = bounds.iter().map(|b| (b.min + b.max) * 0.5).collect();
         let mut b = Build {
@@ -141,11 +155,13 @@ impl Bvh {
             b.node(0, tris.len(), 0);
         }
         let ordered = b.order.iter().map(|&i| b.tris[i as usize]).collect();
+        let ids = b.order.iter().map(|&i| input_ids[i as usize]).collect();
         let mut stats = b.stats;
         stats.nodes = b.nodes.len();
         Bvh {
             nodes: b.nodes,
             triangles: ordered,
+            ids,
             stats,
         }
     }
@@ -161,22 +177,51 @@ impl Bvh {
     /// Whether any triangle is hit at `t ∈ (t_min, t_max)` along `origin + t·dir` (`dir` need
     /// not be unit length; `t` is in its units). Stops at the first hit found.
     pub fn occluded(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> bool {
-        self.first_hit(origin, dir, t_min, t_max, true).is_some()
+        self.occluded_by(origin, dir, t_min, t_max, &|_| true)
+    }
+
+    /// [`Bvh::occluded`] counting only the triangles (caller's indices) that `keep` accepts:
+    /// the visibility attributes decide which geometry each kind of ray sees.
+    pub fn occluded_by(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        keep: &dyn Fn(u32) -> bool,
+    ) -> bool {
+        self.traverse(origin, dir, t_min, t_max, true, keep)
+            .is_some()
     }
 
     /// The nearest hit's `t` in `(t_min, t_max)`, if any (for tests and probes).
     pub fn nearest(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<f64> {
-        self.first_hit(origin, dir, t_min, t_max, false)
+        self.nearest_hit(origin, dir, t_min, t_max, &|_| true)
+            .map(|h| h.t)
     }
 
-    fn first_hit(
+    /// The nearest hit in `(t_min, t_max)` among the triangles `keep` accepts. Ties in `t`
+    /// go to the triangle met first in the (deterministic) traversal.
+    pub fn nearest_hit(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        keep: &dyn Fn(u32) -> bool,
+    ) -> Option<Hit> {
+        self.traverse(origin, dir, t_min, t_max, false, keep)
+    }
+
+    fn traverse(
         &self,
         origin: DVec3,
         dir: DVec3,
         t_min: f64,
         mut t_max: f64,
         any: bool,
-    ) -> Option<f64> {
+        keep: &dyn Fn(u32) -> bool,
+    ) -> Option<Hit> {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= t_min {
             return None;
         }
@@ -191,14 +236,25 @@ impl Bvh {
             if node.bound.hit(&ray, t_max) {
                 if node.count > 0 {
                     let start = node.offset as usize;
-                    for t in &self.triangles[start..start + node.count as usize] {
-                        if let Some(hit) = t.intersect_prepared(&ray, t_min, t_max) {
-                            if any {
-                                return Some(hit);
-                            }
-                            t_max = hit;
-                            found = Some(hit);
+                    let end = start + node.count as usize;
+                    for (t, &id) in self.triangles[start..end].iter().zip(&self.ids[start..end]) {
+                        let Some((hit, barycentric)) = t.intersect_barycentric(&ray, t_min, t_max)
+                        else {
+                            continue;
+                        };
+                        if !keep(id) {
+                            continue;
                         }
+                        let h = Hit {
+                            t: hit,
+                            triangle: id,
+                            barycentric,
+                        };
+                        if any {
+                            return Some(h);
+                        }
+                        t_max = hit;
+                        found = Some(h);
                     }
                 } else {
                     // Visit the child nearer along the ray first (better early exit).

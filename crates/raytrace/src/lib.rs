@@ -18,5 +18,5 @@
 mod bvh;
 mod triangle;
 
-pub use bvh::{Bvh, BvhStats};
+pub use bvh::{Bvh, BvhStats, Hit};
 pub use triangle::Triangle;

@@ -80,6 +80,18 @@ impl Triangle {
         t_min: f64,
         t_max: f64,
     ) -> Option<f64> {
+        self.intersect_barycentric(ray, t_min, t_max)
+            .map(|(t, _)| t)
+    }
+
+    /// The hit's `t` and barycentric weights of `p[0]`, `p[1]`, `p[2]` (they sum to 1), for
+    /// interpolating the vertices' shading data at the hit.
+    pub(crate) fn intersect_barycentric(
+        &self,
+        ray: &PreparedRay,
+        t_min: f64,
+        t_max: f64,
+    ) -> Option<(f64, [f64; 3])> {
         let (kx, ky, kz) = (ray.kx, ray.ky, ray.kz);
         let mut p = self.p.map(|v| {
             let d = v.as_dvec3() - ray.origin;
@@ -102,6 +114,6 @@ impl Triangle {
         }
         let t_scaled = (e0 * p0.z + e1 * p1.z + e2 * p2.z) * ray.sz;
         let t = t_scaled / det;
-        (t > t_min && t < t_max).then_some(t)
+        (t > t_min && t < t_max).then_some((t, [e0 / det, e1 / det, e2 / det]))
     }
 }

@@ -140,3 +140,43 @@ fn coincident_centroids_build_a_valid_tree() {
     assert!(bvh.occluded(DVec3::ZERO, DVec3::Z, 0.0, 2.0));
     assert!(!bvh.occluded(DVec3::new(0.0, 5.0, 0.0), DVec3::Z, 0.0, 2.0));
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+    /// `nearest_hit` with a filter equals brute force over the accepted triangles (ids are the
+    /// input indices), and its barycentric weights rebuild the hit point `o + t·d` from the
+    /// triangle's vertices.
+    #[test]
+    fn filtered_nearest_hit_agrees_with_brute_force_and_its_weights_rebuild_the_point(
+        pts in prop::collection::vec((-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0), 3..300),
+        rays in prop::collection::vec(((-6.0f64..6.0, -6.0f64..6.0, -6.0f64..6.0),
+                                        (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0)), 20),
+    ) {
+        let tris = random_tris(&pts);
+        let bvh = Bvh::new(tris.clone());
+        let keep = |id: u32| id % 3 != 1;
+        let kept: Vec<Triangle> = tris
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| keep(*i as u32))
+            .map(|(_, t)| *t)
+            .collect();
+        for ((ox, oy, oz), (dx, dy, dz)) in rays {
+            let (o, d) = (DVec3::new(ox, oy, oz), DVec3::new(dx, dy, dz));
+            let brute = brute_nearest(&kept, o, d, 50.0);
+            let hit = bvh.nearest_hit(o, d, 0.0, 50.0, &keep);
+            prop_assert_eq!(hit.map(|h| h.t), brute);
+            prop_assert_eq!(bvh.occluded_by(o, d, 0.0, 50.0, &keep), brute.is_some());
+            if let Some(h) = hit {
+                prop_assert!(keep(h.triangle));
+                let t = tris[h.triangle as usize];
+                let w = h.barycentric;
+                prop_assert!((w[0] + w[1] + w[2] - 1.0).abs() < 1e-9);
+                let p = t.p[0].as_dvec3() * w[0] + t.p[1].as_dvec3() * w[1] + t.p[2].as_dvec3() * w[2];
+                let q = o + d * h.t;
+                let scale = 1.0 + q.abs().max_element();
+                prop_assert!((p - q).length() < 1e-9 * scale, "{p} vs {q}");
+            }
+        }
+    }
+}

@@ -15,6 +15,7 @@ mod renderinfo;
 mod shading;
 mod slshaders;
 mod tile;
+mod trace;
 mod volumes;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};

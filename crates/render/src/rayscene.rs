@@ -14,14 +14,20 @@
 //! Displaced primitives cast displaced shadows: each caster grid (the fine one, so the chord
 //! error is measured on the displaced surface) runs the primitive's displacement shader.
 //!
-//! Not modelled: partial transmission ("Os"/"shader" cast as opaque), motion; area-light
-//! geometry is sampled undisplaced.
+//! The same tessellation serves `trace()` from the Shading Language: each triangle keeps its
+//! primitive and its vertices' shading data (`trace::hit`), so a hit point can be shaded by
+//! its own surface shader; per-primitive flags say which rays see it (visibility attributes).
+//!
+//! Not modelled: motion; area-light geometry is sampled undisplaced; the built-in lights'
+//! shadow rays see `"Os"`/`"shader"` casters as opaque (SL `transmission()` sees `1 − Os`).
+use crate::trace::hit::{hit_vertices, HitVertex};
 use glam::{DVec3, Vec3};
 use illume_geom::{Grid, Primitive};
 use illume_raytrace::{Bvh, Triangle};
-use illume_ri::{Camera, Frame};
+use illume_ri::{Attributes, Camera, Frame};
 use illume_shade::{AreaEmitter, Occlusion};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// Target raster length of a triangle edge.
 const EDGE_PIXELS: f64 = 4.0;
@@ -44,56 +50,145 @@ const OFFSET_MARGIN: f32 = 1.5;
 
 pub(crate) struct RayScene {
     bvh: Bvh,
-    /// Per frame primitive: how far shadow rays from it start off its surface.
-    offsets: Vec<f32>,
+    /// Per frame primitive: what rays see of it.
+    prims: Vec<PrimRays>,
+    /// Per triangle (the BVH's ids): its primitive and its three vertices in `verts`.
+    tri_prim: Vec<u32>,
+    tri_verts: Vec<[u32; 3]>,
+    verts: Vec<HitVertex>,
+    /// Some shadow caster is seen as `1 − Os` (else transmission is all or nothing).
+    partial_casters: bool,
+}
+
+/// What rays see of one frame primitive.
+pub(crate) struct PrimRays {
+    pub attributes: Option<Arc<Attributes>>,
+    /// How far rays from it start off its surface.
+    pub offset: f32,
+    /// Shadow rays (built-in lights, `transmission`, `occlusion`) see it.
+    pub shadow: bool,
+    /// Shadow rays see it as `1 − Os` rather than opaque.
+    pub shadow_os: bool,
+    /// `trace()` rays see it.
+    pub traced: bool,
+    /// Its triangles carry displaced positions: normals come from the facets.
+    pub displaced: bool,
+    /// The parametric step between tessellation vertices.
+    pub du: f32,
+    pub dv: f32,
 }
 
 impl Occlusion for RayScene {
     fn occluded(&self, origin: DVec3, dir: DVec3, t_max: f64) -> bool {
-        self.bvh.occluded(origin, dir, 0.0, t_max)
+        self.bvh
+            .occluded_by(origin, dir, 0.0, t_max, &|id| self.prim_of(id).shadow)
     }
 }
 
+/// The per-primitive output of the build: triangles, their vertices' shading data, and what
+/// rays see of it.
+type PrimBuild = (Vec<Triangle>, Vec<[HitVertex; 3]>, PrimRays);
+
 impl RayScene {
-    /// Tessellates every primitive that casts shadows (not area-light geometry: an emitter
-    /// does not block its own light).
+    /// Tessellates every primitive that rays can see: shadow casters (not area-light
+    /// geometry: an emitter does not block its own light) and geometry visible to `trace()`.
     /// `displaced(prim, grid)` gives the grid's displaced positions (`None`: not displaced).
+    /// `parallel`: over rayon's pool (only when not built from inside a shading task).
     pub fn build(
         frame: &Frame,
         displaced: &(dyn Fn(usize, &Grid) -> Option<Vec<Vec3>> + Sync),
+        parallel: bool,
     ) -> RayScene {
-        let per_prim: Vec<(Vec<Triangle>, f32)> = frame
-            .primitives
-            .par_iter()
-            .enumerate()
-            .map(|(index, fp)| {
-                let a = &fp.attributes;
-                let mut tris = Vec::new();
-                let mut offset = 0.0f32;
-                // Geometry that blocks no ray cannot shadow itself either: no offset needed.
-                if !a.casts_shadows || a.area_light.is_some() {
-                    return (tris, offset);
+        let one = |(index, fp): (usize, &illume_ri::FramePrimitive)| -> PrimBuild {
+            let a = &fp.attributes;
+            let shadow = a.casts_shadows && a.area_light.is_none();
+            let mut rays = PrimRays {
+                attributes: Some(a.clone()),
+                offset: 0.0,
+                shadow,
+                shadow_os: a.transmission_os,
+                traced: a.visible_to_rays,
+                displaced: false,
+                du: 0.0,
+                dv: 0.0,
+            };
+            let (mut tris, mut verts) = (Vec::new(), Vec::new());
+            // Geometry that blocks no ray cannot shadow itself either: no offset needed.
+            if !shadow && !rays.traced {
+                return (tris, verts, rays);
+            }
+            let mut offset = 0.0f32;
+            for mut g in diced(fp.primitive.as_ref(), &frame.camera, MIN_SEGMENTS) {
+                if let Some(p) = displaced(index, &g) {
+                    g.p = p;
+                    rays.displaced = true;
                 }
-                for mut g in diced(fp.primitive.as_ref(), &frame.camera, MIN_SEGMENTS) {
-                    if let Some(p) = displaced(index, &g) {
-                        g.p = p;
-                    }
-                    offset = offset.max(triangles(&g, &mut tris));
-                }
-                (tris, offset * OFFSET_MARGIN)
-            })
-            .collect();
-        let offsets = per_prim.iter().map(|p| p.1).collect();
-        let tris = per_prim.into_iter().flat_map(|p| p.0).collect();
-        RayScene {
-            bvh: Bvh::new(tris),
-            offsets,
+                (rays.du, rays.dv) = (2.0 * g.du, 2.0 * g.dv);
+                offset = offset.max(triangles(&g, &mut tris));
+                hit_vertices(&g, a, &mut verts);
+            }
+            rays.offset = offset * OFFSET_MARGIN;
+            (tris, verts, rays)
+        };
+        let per_prim: Vec<PrimBuild> = if parallel {
+            frame.primitives.par_iter().enumerate().map(one).collect()
+        } else {
+            frame.primitives.iter().enumerate().map(one).collect()
+        };
+        let mut scene = RayScene {
+            bvh: Bvh::new(Vec::new()),
+            prims: Vec::with_capacity(per_prim.len()),
+            tri_prim: Vec::new(),
+            tri_verts: Vec::new(),
+            verts: Vec::new(),
+            partial_casters: false,
+        };
+        let mut all = Vec::new();
+        for (index, (tris, verts, rays)) in per_prim.into_iter().enumerate() {
+            for (t, v) in tris.into_iter().zip(verts) {
+                let base = scene.verts.len() as u32;
+                scene.verts.extend(v);
+                scene.tri_verts.push([base, base + 1, base + 2]);
+                scene.tri_prim.push(index as u32);
+                all.push(t);
+            }
+            scene.prims.push(rays);
         }
+        scene.bvh = Bvh::new(all);
+        scene.partial_casters = scene.prims.iter().any(|p| p.shadow && p.shadow_os);
+        scene
     }
 
     /// The shadow-ray offset for grids of frame primitive `prim`.
     pub fn offset(&self, prim: usize) -> f32 {
-        self.offsets.get(prim).copied().unwrap_or(0.0)
+        self.prims.get(prim).map_or(0.0, |p| p.offset)
+    }
+
+    /// Whether any shadow caster is partly transparent to shadow rays (`"Os"`/`"shader"`).
+    pub fn has_partial_casters(&self) -> bool {
+        self.partial_casters
+    }
+
+    pub fn prim(&self, prim: usize) -> Option<&PrimRays> {
+        self.prims.get(prim)
+    }
+
+    /// The primitive that triangle `id` belongs to.
+    pub fn prim_of(&self, id: u32) -> &PrimRays {
+        &self.prims[self.tri_prim[id as usize] as usize]
+    }
+
+    pub fn prim_index(&self, id: u32) -> usize {
+        self.tri_prim[id as usize] as usize
+    }
+
+    /// The three vertices of triangle `id`.
+    pub fn vertices(&self, id: u32) -> [&HitVertex; 3] {
+        self.tri_verts[id as usize].map(|k| &self.verts[k as usize])
+    }
+
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
     }
 }
 

@@ -16,7 +16,7 @@ use illume_shade::{
 };
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// A bound displacement, keyed like the surfaces; `None` when the name is unknown (warned).
 type BoundDisplacement = Option<Arc<Displacement>>;
@@ -26,6 +26,7 @@ type BoundSurface = Option<Arc<Surface>>;
 
 /// Everything shading needs that is the same for every grid of a frame.
 pub(crate) struct FrameShading<'a> {
+    pub(crate) frame: &'a Frame,
     /// Bound surfaces keyed by the address of the `Arc<Shader>` the attributes share (the frame
     /// keeps those alive, so an address names one shader for the whole frame).
     surfaces: HashMap<usize, BoundSurface>,
@@ -41,8 +42,11 @@ pub(crate) struct FrameShading<'a> {
     orthographic: bool,
     specular_model: SpecularModel,
     textures: Option<&'a dyn TextureLookup>,
-    /// The shadow-casting geometry, when some light traces shadow rays.
-    rays: Option<RayScene>,
+    /// The geometry rays see: built up front when some light traces shadow rays, else on the
+    /// first ray a shader casts (see `trace`).
+    rays: OnceLock<RayScene>,
+    /// `Option "trace" "maxdepth"`.
+    pub(crate) trace_max_depth: u32,
     /// The frame number, for per-point random numbers.
     seed: u32,
     /// The camera's clipping planes, for `depth()`.
@@ -134,7 +138,7 @@ impl<'a> FrameShading<'a> {
     /// Binds every surface and light of the frame; problems come back as warnings with the
     /// span of the `Surface`/`LightSource` request.
     pub fn new(
-        frame: &Frame,
+        frame: &'a Frame,
         textures: Option<&'a dyn TextureLookup>,
     ) -> (FrameShading<'a>, Vec<Diagnostic>) {
         let mut diags = Vec::new();
@@ -212,7 +216,8 @@ impl<'a> FrameShading<'a> {
         let (screen_from_camera, ndc_from_camera, raster_from_camera) = projections(frame);
         let specular_model =
             SpecularModel::from_option(&frame.options.specular_model).unwrap_or_default();
-        let mut shading = FrameShading {
+        let shading = FrameShading {
+            frame,
             surfaces,
             default_surface,
             displacements,
@@ -225,7 +230,8 @@ impl<'a> FrameShading<'a> {
             orthographic: !frame.camera.is_perspective(),
             specular_model,
             textures,
-            rays: None,
+            rays: OnceLock::new(),
+            trace_max_depth: frame.options.trace_max_depth,
             seed: frame.number.unwrap_or(0) as u32,
             clipping: (frame.camera.near as f32, frame.camera.far as f32),
             // PRMan draws each lookup's bias between bias0 and bias1; one value, their mean,
@@ -248,16 +254,30 @@ impl<'a> FrameShading<'a> {
             volumes,
         };
         if needs_rays {
-            // Casters are displaced like the grids the camera sees, so a displaced surface
-            // casts its displaced shadow.
-            let displaced = |prim: usize, grid: &Grid| {
-                let attrs = &frame.primitives[prim].attributes;
-                let flip = frame.primitives[prim].normal_sign();
-                shading.displaced_positions(grid, attrs, flip, prim)
-            };
-            shading.rays = Some(RayScene::build(frame, &displaced));
+            let scene = shading.build_ray_scene(true);
+            let _ = shading.rays.set(scene);
         }
         (shading, diags)
+    }
+
+    /// The geometry rays see, built on first use (sequentially: this may run inside a shading
+    /// task, see `trace`).
+    pub(crate) fn ray_scene(&self) -> &RayScene {
+        self.rays.get_or_init(|| self.build_ray_scene(false))
+    }
+
+    /// Casters are displaced like the grids the camera sees, so a displaced surface casts its
+    /// displaced shadow. Their displacement shaders run without a ray tracer (the scene they
+    /// would trace is the one being built).
+    fn build_ray_scene(&self, parallel: bool) -> RayScene {
+        let displaced = |prim: usize, grid: &Grid| {
+            // Casters are displaced like the grids the camera sees, so a displaced surface
+            // casts its displaced shadow.
+            let attrs = &self.frame.primitives[prim].attributes;
+            let flip = self.frame.primitives[prim].normal_sign();
+            self.displaced_positions_with(grid, attrs, flip, prim, false)
+        };
+        RayScene::build(self.frame, &displaced, parallel)
     }
 
     fn displacement_for(&self, attrs: &Attributes) -> BoundDisplacement {
@@ -294,11 +314,25 @@ impl<'a> FrameShading<'a> {
         flip: f32,
         prim: usize,
     ) -> Option<Vec<Vec3>> {
+        self.displaced_positions_with(grid, attrs, flip, prim, true)
+    }
+
+    fn displaced_positions_with(
+        &self,
+        grid: &Grid,
+        attrs: &Attributes,
+        flip: f32,
+        prim: usize,
+        tracing: bool,
+    ) -> Option<Vec<Vec3>> {
         if self.sl.displacement(attrs).is_none() && self.displacement_for(attrs).is_none() {
             return None;
         }
         let mut g = self.shading_grid(grid, attrs, flip);
-        let env = self.env(attrs, prim);
+        let mut env = self.env(attrs, prim);
+        if !tracing {
+            env.tracer = None;
+        }
         self.run_displacement(&mut g, attrs, &env).then_some(g.p)
     }
 
@@ -344,10 +378,11 @@ impl<'a> FrameShading<'a> {
             .map_or(DMat4::IDENTITY, |s| s.camera_from_shader);
         env.camera_from_object = camera_from_shader;
         env.camera_from_shader = camera_from_shader;
-        if let Some(r) = &self.rays {
+        if let Some(r) = self.rays.get() {
             env.occlusion = Some(r);
             env.ray_offset = r.offset(prim);
         }
+        env.primitive = prim;
         env.attributes = self
             .attribute_info
             .get(&(attrs as *const Attributes as usize));
@@ -366,6 +401,7 @@ impl<'a> FrameShading<'a> {
         env.specular_model = self.specular_model;
         env.textures = self.textures;
         env.warnings = Some(&self.warnings);
+        env.tracer = Some(self);
         env.seed = self.seed;
         env.clipping = self.clipping;
         env.shadow_bias = self.shadow_bias;
@@ -390,6 +426,34 @@ impl<'a> FrameShading<'a> {
     /// "object" space is not yet carried with the primitive, so shaders see the surface's shader
     /// space there (the same space unless the Surface was declared under another transform).
     pub fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
+        self.shade_grid_at(grid, attrs, flip, prim, None)
+    }
+
+    /// A `trace()` hit as a one-point grid, shaded at ray depth `depth` with incident vector
+    /// `incident` (the ray): its `Ci`, `Oi`. Not displaced again (the tessellation already is).
+    pub(crate) fn shade_hit(
+        &self,
+        grid: &Grid,
+        attrs: &Attributes,
+        flip: f32,
+        prim: usize,
+        depth: u32,
+        incident: Vec3,
+    ) -> (Vec3, Vec3) {
+        let s = self.shade_grid_at(grid, attrs, flip, prim, Some((depth, incident)));
+        let at = |v: &[Vec3]| v.first().copied().unwrap_or(Vec3::ZERO);
+        (at(&s.ci), at(&s.oi))
+    }
+
+    /// [`FrameShading::shade_grid`], or for a ray hit (`ray`: depth and incident vector).
+    fn shade_grid_at(
+        &self,
+        grid: &Grid,
+        attrs: &Attributes,
+        flip: f32,
+        prim: usize,
+        ray: Option<(u32, Vec3)>,
+    ) -> Shaded {
         let sl_surface = self.sl.surface(attrs);
         let surface = match sl_surface {
             Some(_) => Some(self.default_surface.clone()),
@@ -412,13 +476,21 @@ impl<'a> FrameShading<'a> {
             };
         };
         let mut g = self.shading_grid(grid, attrs, flip);
+        if let Some((_, incident)) = ray {
+            g.i = vec![incident; g.len()];
+        }
         let lights: Vec<&illume_shade::Light> = attrs
             .lights
             .iter()
             .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
             .collect();
-        let env = self.env(attrs, prim);
-        self.run_displacement(&mut g, attrs, &env);
+        let mut env = self.env(attrs, prim);
+        match ray {
+            Some((depth, _)) => env.ray_depth = depth,
+            None => {
+                self.run_displacement(&mut g, attrs, &env);
+            }
+        }
         let mut cache = LightCache::run(&lights, &g, &env);
         let builtin_count = cache.lights.len();
         let mut sl_outputs = Vec::new();

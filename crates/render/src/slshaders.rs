@@ -5,8 +5,9 @@
 //! not compile warns once with its `file:line:col` diagnostics and the built-in (or
 //! `defaultsurface`) is used instead.
 use glam::DMat4;
+use glam::Vec3;
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
-use illume_shade::{Light, LightSamples, ShadingEnv, ShadingGrid};
+use illume_shade::{AreaEmitter, Light, LightSamples, ShadingEnv, ShadingGrid};
 use illume_sl::types::ShaderKind;
 use illume_slvm::library::ShaderLibrary;
 use illume_slvm::{SlInstance, Value};
@@ -20,7 +21,14 @@ pub(crate) struct SlLight {
     pub shader: SlInstance,
     pub proxy: Light,
     pub camera_from_shader: DMat4,
+    /// An `AreaLightSource`'s geometry and samples per shaded point (`Attribute "light"
+    /// "nsamples"`): the shader runs once per sample with `P`, `N` on the geometry.
+    pub emitter: Option<(Arc<AreaEmitter>, u32)>,
 }
+
+/// The random stream of area-light samples: the built-in `arealight`'s, so an SL area light
+/// samples the very points the built-in does.
+const AREA_STREAM: u32 = 0x2c1b_3c6d;
 
 /// An SL light's parameters by name after it ran on a grid (what `lightsource()` reads).
 pub(crate) type LightParams = Vec<(String, Value)>;
@@ -120,7 +128,8 @@ impl SlShaders {
         sl.lights = frame
             .lights
             .iter()
-            .map(|l| {
+            .enumerate()
+            .map(|(index, l)| {
                 let s = &l.shader;
                 let shader = bind_sl(
                     frame,
@@ -134,10 +143,16 @@ impl SlShaders {
                 let proxy = illume_shade::light("pointlight", &s.params, s.camera_from_shader)
                     .map(|(l, _)| l)
                     .ok()?;
+                let emitter = l
+                    .area
+                    .then(|| crate::rayscene::emitter(frame, index))
+                    .filter(|e| !e.is_empty())
+                    .map(|e| (Arc::new(e), l.samples.max(1)));
                 Some(SlLight {
                     shader,
                     proxy,
                     camera_from_shader: s.camera_from_shader,
+                    emitter,
                 })
             })
             .collect();
@@ -189,15 +204,71 @@ impl SlShaders {
         env: &ShadingEnv,
         messages: &illume_slvm::Messages,
     ) -> Vec<(&'s Light, LightSamples, LightParams)> {
-        indices
+        let mut out = Vec::new();
+        for l in indices
             .iter()
             .filter_map(|&i| self.lights.get(i).and_then(Option::as_ref))
-            .map(|l| {
-                let mut lenv = *env;
-                lenv.camera_from_shader = l.camera_from_shader;
-                let (samples, outputs) = l.shader.run_light_with(grid, &lenv, messages.clone());
-                (&l.proxy, samples, outputs)
-            })
-            .collect()
+        {
+            let mut lenv = *env;
+            lenv.camera_from_shader = l.camera_from_shader;
+            match &l.emitter {
+                Some((emitter, n)) => {
+                    for k in 0..*n {
+                        let (samples, outputs) =
+                            area_sample(l, emitter, k, *n, grid, &lenv, messages);
+                        out.push((&l.proxy, samples, outputs));
+                    }
+                }
+                None => {
+                    let (samples, outputs) = l.shader.run_light_with(grid, &lenv, messages.clone());
+                    out.push((&l.proxy, samples, outputs));
+                }
+            }
+        }
+        out
     }
+}
+
+/// Sample `k` of `n` of an SL area light: every shaded point gets its own stratified point on
+/// the geometry (the built-in `arealight`'s numbers), the shader runs with `P`, `N` there, and
+/// its `Cl` carries `1/n` of the light. A point without a sample gets nothing.
+fn area_sample(
+    l: &SlLight,
+    emitter: &AreaEmitter,
+    k: u32,
+    n: u32,
+    grid: &ShadingGrid,
+    env: &ShadingEnv,
+    messages: &illume_slvm::Messages,
+) -> (LightSamples, LightParams) {
+    let stream = env.seed ^ AREA_STREAM;
+    let points: Vec<Option<(Vec3, Vec3)>> = grid
+        .p
+        .iter()
+        .map(|&p| {
+            let (u1, u2) = illume_shade::stratified_sample(p, k, n, stream);
+            emitter.sample(u1, u2)
+        })
+        .collect();
+    let position = points
+        .iter()
+        .map(|s| s.map_or(Vec3::ZERO, |s| s.0))
+        .collect();
+    let normal = points
+        .iter()
+        .map(|s| s.map_or(Vec3::ZERO, |s| s.1))
+        .collect();
+    let (mut samples, outputs) =
+        l.shader
+            .run_area_light_sample(grid, env, messages.clone(), position, normal);
+    let weight = 1.0 / n as f32;
+    for (i, s) in points.iter().enumerate() {
+        if s.is_none() {
+            samples.lit[i] = false;
+            samples.cl[i] = Vec3::ZERO;
+        } else {
+            samples.cl[i] *= weight;
+        }
+    }
+    (samples, outputs)
 }

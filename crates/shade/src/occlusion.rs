@@ -60,3 +60,9 @@ pub(crate) fn stratified(k: u32, n: u32, (a, b): (f64, f64)) -> (f64, f64) {
         (f64::from(j) + b) / f64::from(ny),
     )
 }
+
+/// Stratified sample `k` of `n` for a point at `p`, numbers hashed from the point, the sample
+/// and `stream` (as the built-in lights draw theirs): for the SL ray-tracing calls.
+pub fn stratified_sample(p: Vec3, k: u32, n: u32, stream: u32) -> (f64, f64) {
+    stratified(k, n, point_random(p, k, stream))
+}

@@ -3,6 +3,7 @@
 use crate::occlusion::Occlusion;
 use crate::renderstate::RenderInfo;
 use crate::texturelookup::TextureLookup;
+use crate::tracing::RayTracer;
 use glam::{DMat4, Vec3};
 use std::collections::{HashMap, HashSet};
 use std::sync::Mutex;
@@ -96,6 +97,12 @@ pub struct ShadingEnv<'a> {
     /// bound on the distance between its ray-tracing tessellation and the true surface
     /// (a rounding term is added per point, see `occlusion.rs`).
     pub ray_offset: f32,
+    /// Rays from shaders (`trace`, `visibility`, `occlusion`, …); `None`: they see nothing.
+    pub tracer: Option<&'a dyn RayTracer>,
+    /// The frame primitive being shaded (for the tracer's ray offset).
+    pub primitive: usize,
+    /// How many `trace()` bounces led to this grid (0: the camera sees it).
+    pub ray_depth: u32,
     /// Mixed into every per-point random number (the frame number), so frames differ.
     pub seed: u32,
     /// The camera's `Clipping` planes (camera-space z), for `depth()`.
@@ -126,6 +133,9 @@ impl<'a> ShadingEnv<'a> {
             warnings: None,
             occlusion: None,
             ray_offset: 0.0,
+            tracer: None,
+            primitive: usize::MAX,
+            ray_depth: 0,
             seed: 0,
             clipping: (f32::EPSILON, f32::INFINITY),
             shadow_bias: 0.225,

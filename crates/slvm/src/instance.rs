@@ -282,18 +282,53 @@ impl SlInstance {
         env: &ShadingEnv,
         messages: Messages,
     ) -> (LightSamples, Vec<(String, Value)>) {
-        let lights = Lights::default();
-        let n = grid.len();
-        let mut exec = Exec::new(&self.shader.program, grid, env, &lights);
-        exec.messages = messages;
         // In a light shader P is the light's own position (its shader-space origin for a
         // non-area light), Ps the surface point.
         let origin = env
             .camera_from_shader
             .transform_point3(glam::DVec3::ZERO)
             .as_vec3();
-        exec.set_global(Global::P, Value::triple(origin));
-        exec.set_global(Global::N, Value::triple(Vec3::ZERO));
+        self.run_light_from(
+            grid,
+            env,
+            messages,
+            Value::triple(origin),
+            Value::triple(Vec3::ZERO),
+        )
+    }
+
+    /// One area-light sample: the light runs with `P`, `N` the point sampled on its geometry
+    /// for each shaded point (`position[i]`, `normal[i]`), as the built-in `arealight` does;
+    /// the caller weights the samples' `Cl`.
+    pub fn run_area_light_sample(
+        &self,
+        grid: &ShadingGrid,
+        env: &ShadingEnv,
+        messages: Messages,
+        position: Vec<Vec3>,
+        normal: Vec<Vec3>,
+    ) -> (LightSamples, Vec<(String, Value)>) {
+        let (p, n) = (
+            Value::Triple(crate::value::Slot::Varying(position)),
+            Value::Triple(crate::value::Slot::Varying(normal)),
+        );
+        self.run_light_from(grid, env, messages, p, n)
+    }
+
+    fn run_light_from(
+        &self,
+        grid: &ShadingGrid,
+        env: &ShadingEnv,
+        messages: Messages,
+        position: Value,
+        normal: Value,
+    ) -> (LightSamples, Vec<(String, Value)>) {
+        let lights = Lights::default();
+        let n = grid.len();
+        let mut exec = Exec::new(&self.shader.program, grid, env, &lights);
+        exec.messages = messages;
+        exec.set_global(Global::P, position);
+        exec.set_global(Global::N, normal);
         exec.set_global(Global::Cl, Value::triple(Vec3::ZERO));
         let params = self.params(&mut exec, grid);
         let out = exec.run_shader(self.shader.id, params);

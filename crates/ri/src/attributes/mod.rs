@@ -79,6 +79,14 @@ pub struct Attributes {
     /// (all as fully opaque here), "transparent" and "none" do not; PRMan's integer form
     /// (`"int transmission" [0]`) too.
     pub casts_shadows: bool,
+    /// Shadow rays (`transmission()`, `visibility()`, `occlusion()` from SL) see this
+    /// geometry as partly transparent, `1 − Os`: the `"Os"` and `"shader"` values of the
+    /// transmission attribute (shaders do not run for shadow rays: `"shader"` reads `Os`).
+    pub transmission_os: bool,
+    /// Whether `trace()` rays see this geometry: `Attribute "visibility" "trace"` /
+    /// `"reflection"` (0/1) and bit 2 of BMRT's `Attribute "render" "visibility"`. By default
+    /// rays see everything, as in BMRT.
+    pub visible_to_rays: bool,
     /// `TrimCurve` loops for the NuPatches that follow (RI Spec 3.2 §5.5: an attribute).
     pub trim_curves: Option<Arc<illume_geom::TrimCurves>>,
 }
@@ -113,6 +121,8 @@ impl Default for Attributes {
             light_shadows: false,
             light_samples: 16,
             casts_shadows: true,
+            transmission_os: false,
+            visible_to_rays: true,
             trim_curves: None,
         }
     }

@@ -65,7 +65,13 @@ impl Ri {
                 },
                 ("visibility", "transmission") | ("render", "casts_shadows") => {
                     match casts_shadows(params, &p) {
-                        Some(c) => self.attrs().casts_shadows = c,
+                        Some(c) => {
+                            self.attrs().casts_shadows = c;
+                            self.attrs().transmission_os = matches!(
+                                paramlist::string(params, &p).as_deref(),
+                                Some("Os" | "shader" | "shade")
+                            );
+                        }
                         None => self.diagnostics.error(
                             span,
                             "Attribute",
@@ -74,6 +80,15 @@ impl Ri {
                             ),
                         ),
                     }
+                }
+                ("visibility", "trace" | "reflection") if f.is_some() => {
+                    self.attrs().visible_to_rays = f.unwrap_or(1.0) != 0.0
+                }
+                ("render", "visibility") if f.is_some() => {
+                    // BMRT's bit set: 1 camera, 2 reflection rays, 4 shadow rays.
+                    let bits = f.unwrap_or(7.0) as u32;
+                    self.attrs().visible_to_rays = bits & 2 != 0;
+                    self.attrs().casts_shadows = bits & 4 != 0;
                 }
                 (_, p) => self.diagnostics.warn(
                     span,
@@ -99,7 +114,8 @@ fn on_off(params: &ParamList, name: &str) -> Option<bool> {
 
 /// Whether geometry casts shadows under BMRT's `"visibility" "transmission"` /
 /// `"render" "casts_shadows"` values (or PRMan's integer `transmission`). "Os" and "shader"
-/// (partial transmission) are treated as opaque: shadow rays do not run shaders here.
+/// (partial transmission) cast; the built-in lights' shadow rays treat them as opaque, SL's
+/// `transmission()` as `1 − Os` (see `Attributes::transmission_os`).
 fn casts_shadows(params: &ParamList, name: &str) -> Option<bool> {
     if let Some(s) = paramlist::string(params, name) {
         return match s.as_str() {

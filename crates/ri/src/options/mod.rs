@@ -100,6 +100,9 @@ pub struct Options {
     pub shadow_bias: [f32; 2],
     /// `Option "shading" "string specularmodel"` (DESIGN.md: "prman" switches the exponent).
     pub specular_model: String,
+    /// `Option "trace" "maxdepth"`: how many `trace()` bounces a ray may take (BMRT's
+    /// default 2: a mirror sees a mirror's reflection, then black).
+    pub trace_max_depth: u32,
     /// `Shutter` open, close (default 0 0: no motion blur).
     pub shutter: [f32; 2],
     /// `DepthOfField` fstop, focallength, focaldistance; `None` is a pinhole camera.
@@ -152,6 +155,7 @@ impl Default for Options {
             procedural_path: vec![".".into()],
             shadow_bias: [0.225, 0.225],
             specular_model: "prman".into(),
+            trace_max_depth: 2,
             shutter: [0.0, 0.0],
             depth_of_field: None,
             imager: None,

@@ -66,6 +66,17 @@ impl Options {
                 ("shading", "specularmodel") if s.is_some() => {
                     o.specular_model = s.unwrap_or_default()
                 }
+                ("trace", "maxdepth") if !f.is_empty() => {
+                    if f[0] >= 0.0 && f[0].is_finite() {
+                        o.trace_max_depth = (f[0] as u32).min(64);
+                    } else {
+                        diagnostics.error(
+                            span,
+                            "Option",
+                            "\"trace\" \"maxdepth\": expected a count >= 0",
+                        );
+                    }
+                }
                 (_, p) => diagnostics.warn(
                     span,
                     "Option",

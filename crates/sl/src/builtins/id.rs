@@ -30,7 +30,9 @@ pub enum Family {
     Matrix,
     /// §15.5 strings: `concat`, `printf`, `format`, `match`.
     String,
-    /// §15.6 shading and lighting: `ambient`, `diffuse`, `specular`, …, `trace`.
+    /// §15.6 shading and lighting: `ambient`, `diffuse`, `specular`, …, and the ray-tracing
+    /// calls of BMRT (`trace`, `visibility`, `rayhittest`, `fulltrace`) and PRMan
+    /// (`transmission`, `occlusion`).
     Shading,
     /// §15.8 message passing and information: `surface()`, `lightsource()`, `attribute()`,
     /// `textureinfo()`, ….
@@ -109,6 +111,8 @@ builtin_ids! {
     Shading {
         Ambient = "ambient", Diffuse = "diffuse", Specular = "specular",
         SpecularBrdf = "specularbrdf", Phong = "phong", Trace = "trace",
+        Visibility = "visibility", RayHitTest = "rayhittest", FullTrace = "fulltrace",
+        Transmission = "transmission", Occlusion = "occlusion",
     }
     Message {
         TextureInfo = "textureinfo", Surface = "surface", Displacement = "displacement",
@@ -136,6 +140,11 @@ impl BuiltinId {
                 | B::SpecularBrdf
                 | B::Phong
                 | B::Trace
+                | B::Visibility
+                | B::RayHitTest
+                | B::FullTrace
+                | B::Transmission
+                | B::Occlusion
                 | B::Random
                 | B::Du
                 | B::Dv

@@ -25,6 +25,10 @@
 //! PRMan and Aqsis do) rather than RI 3.2's point-only form, so `transform ("world", N)` does
 //! not silently turn a normal into a point; `vtransform`/`ntransform` remain.
 //!
+//! The ray-tracing calls follow BMRT (`trace`, `visibility` as float or colour,
+//! `rayhittest`, `fulltrace`) and PRMan 11 (`transmission`, `occlusion(P, N, samples)` with
+//! optional `"maxdist"`).
+//!
 //! `arraylength` (PRMan's, not RI 3.2's) is included because functions taking `float a[]`
 //! need it to loop over their argument.
 //!
@@ -201,6 +205,11 @@ c specular(n,v,f)
 c specularbrdf(v,n,v,f)
 c phong(n,v,f)
 c trace(p,v)
+R visibility(p,p)
+f rayhittest(p,v,op,on)
+c fulltrace(p,v,of,op,on,op,ov)
+c transmission(p,p)~
+f occlusion(p,n,f)~
 f textureinfo(s,s,oA)
 f surface(s,oA)
 f displacement(s,oA)

@@ -13,6 +13,7 @@ mod math;
 mod matrix;
 mod message;
 mod noise;
+mod raytrace;
 mod shading;
 mod strings;
 mod texture;
@@ -35,6 +36,8 @@ pub(crate) struct Args<'c> {
     exprs: &'c [Expr],
     /// The running points.
     mask: &'c Mask,
+    /// The optional `"name", value` pair expressions, unevaluated.
+    pairs: &'c [Expr],
 }
 
 impl Exec<'_> {
@@ -46,7 +49,8 @@ impl Exec<'_> {
         ty: Type,
     ) -> Value {
         // Optional "name", value pairs (filterstep's "width", …) are not positional arguments.
-        let positional = &args[..call.optional_from.unwrap_or(args.len()).min(args.len())];
+        let split = call.optional_from.unwrap_or(args.len()).min(args.len());
+        let (positional, pairs) = args.split_at(split);
         let vals: Vec<Value> = positional.iter().map(|a| self.eval(a, mask)).collect();
         let c = Args {
             id: call.id,
@@ -54,6 +58,7 @@ impl Exec<'_> {
             a: &vals,
             exprs: positional,
             mask,
+            pairs,
         };
         let result = match call.id.family() {
             Family::Math => self.math(&c),

@@ -1,6 +1,6 @@
 //! §15.6 shading and lighting built-ins: `ambient`, `diffuse`, `specular`, `phong`,
-//! `specularbrdf` over the lights gathered for the grid ([`crate::Lights`]), and `trace`
-//! (black: no ray tracing yet).
+//! `specularbrdf` over the lights gathered for the grid ([`crate::Lights`]); the ray-tracing
+//! calls are in `raytrace.rs`.
 use super::{fl, tr, Args};
 use crate::exec::Exec;
 use crate::value::{zip2, Slot, Value};
@@ -52,7 +52,15 @@ impl Exec<'_> {
                     Vec3::splat(illume_shade::specularbrdf(*l, *nn, *v, *r, model))
                 }))
             }
-            (B::Trace, _) => Value::triple(Vec3::ZERO),
+            (
+                B::Trace
+                | B::Visibility
+                | B::RayHitTest
+                | B::FullTrace
+                | B::Transmission
+                | B::Occlusion,
+                _,
+            ) => return self.raytrace(c),
             _ => return None,
         })
     }

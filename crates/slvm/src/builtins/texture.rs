@@ -14,6 +14,9 @@ use illume_texture::{ShadowOptions, TextureFilter, TextureOptions};
 struct Options {
     texture: TextureOptions,
     shadow: ShadowOptions,
+    /// `"blur"` as given (ray-traced shadows are sharp unless asked, unlike map lookups whose
+    /// default blur hides the map's texels).
+    blur: Option<f32>,
 }
 
 impl Exec<'_> {
@@ -36,6 +39,7 @@ impl Exec<'_> {
                 ("blur", Some(x)) => {
                     o.texture.blur = x;
                     o.shadow.blur = x;
+                    o.blur = Some(x);
                 }
                 ("width", Some(x)) => {
                     o.texture.width = x;
@@ -129,6 +133,11 @@ impl Exec<'_> {
         let opts = self.texture_options(call, mask);
         let coords: Vec<Value> = call.coords.iter().map(|c| self.eval(c, mask)).collect();
         let nch = if ty.base == BaseType::Float { 1 } else { 3 };
+        if name == "raytrace" {
+            if let Some(v) = self.raytraced_lookup(call.kind, &coords, &opts, mask, nch) {
+                return v;
+            }
+        }
         let Some(tex) = self.env.textures else {
             self.env.warn(&format!(
                 "{} `{name}`: no texture system; black",
@@ -232,6 +241,46 @@ impl Exec<'_> {
                     .map(|c| Vec3::new(clean(c[0]), clean(c[1]), clean(c[2])))
                     .collect(),
             ))
+        }
+    }
+}
+
+impl Exec<'_> {
+    /// BMRT's `shadow("raytrace", Ps)` and `environment("raytrace", R)`: rays instead of a
+    /// map (`samples`/`blur` shape the shadow rays). `None` for `texture("raytrace")`, which
+    /// is an ordinary file name.
+    fn raytraced_lookup(
+        &mut self,
+        kind: TextureKind,
+        coords: &[Value],
+        opts: &Options,
+        mask: &Mask,
+        nch: usize,
+    ) -> Option<Value> {
+        let first = coords.first().map(triple_slot)?;
+        match kind {
+            TextureKind::Shadow => {
+                let v = self.raytraced_shadow(
+                    mask,
+                    &first,
+                    opts.shadow.samples,
+                    opts.blur.unwrap_or(0.0),
+                );
+                Some(if nch == 1 {
+                    Value::Float(Slot::Varying(v))
+                } else {
+                    Value::Triple(Slot::Varying(v.into_iter().map(Vec3::splat).collect()))
+                })
+            }
+            TextureKind::Environment => {
+                let c = self.raytraced_environment(mask, &first);
+                Some(if nch == 1 {
+                    Value::Float(Slot::Varying(c.into_iter().map(|c| c.x).collect()))
+                } else {
+                    Value::Triple(Slot::Varying(c))
+                })
+            }
+            _ => None,
         }
     }
 }

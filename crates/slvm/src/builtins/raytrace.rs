@@ -1,0 +1,315 @@
+//! The ray-tracing built-ins: BMRT's `trace`, `visibility`, `rayhittest`, `fulltrace`, PRMan's
+//! `transmission` and `occlusion`, and the `"raytrace"` forms of `shadow()` and
+//! `environment()`, through the renderer's [`RayTracer`] (none: rays see nothing, so `trace`
+//! is black and everything is visible).
+//!
+//! Rays leave from the given point pushed off the shaded surface along the grid's `Ng` (the
+//! tracer's offset); directions are normalized, so distances are camera-space lengths. A
+//! `trace` at `Option "trace" "maxdepth"` returns black, as BMRT does.
+//!
+//! Sampled calls (`occlusion`, blurred ray-traced shadows) draw their numbers from a hash of
+//! the point, the sample index and the frame seed only, so the same bits for any thread count.
+use super::{fl, st, tr, Args};
+use crate::exec::Exec;
+use crate::value::{Mask, Slot, Value};
+use glam::{DVec3, Vec3};
+use illume_shade::{cosine_direction, segment, RayStart, RayTracer};
+use illume_sl::ast::{BuiltinId as B, Expr};
+use illume_sl::types::BaseType;
+
+/// What `rayhittest`/`fulltrace` report for a ray that hits nothing (BMRT's "infinity").
+pub(crate) const NO_HIT: f32 = 1.0e30;
+
+/// Stream tags keeping the sampled calls' random numbers apart.
+const OCCLUSION_STREAM: u32 = 0x6f63_636c;
+const SHADOW_STREAM: u32 = 0x7368_6477;
+
+impl Exec<'_> {
+    /// The ray-tracing family members; `None` for an overload the executor does not implement.
+    pub(super) fn raytrace(&mut self, c: &Args) -> Option<Value> {
+        let (a, n, mask) = (c.a, self.n, c.mask);
+        Some(match (c.id, a.len()) {
+            (B::Trace, 2) => {
+                let (p, r) = (tr(&a[0]), tr(&a[1]));
+                self.per_point(mask, Vec3::ZERO, |x, i, t| {
+                    x.trace_colour(t, i, *p.at(i), *r.at(i))
+                })
+            }
+            (B::Visibility | B::Transmission, 2) => {
+                let (p1, p2) = (tr(&a[0]), tr(&a[1]));
+                let v = self.per_point(mask, Vec3::ONE, |x, i, t| {
+                    x.transmission_between(t, i, *p1.at(i), *p2.at(i))
+                });
+                if c.ret == BaseType::Float {
+                    let Value::Triple(s) = v else { return None };
+                    Value::Float(s.map(|c| (c.x + c.y + c.z) / 3.0))
+                } else {
+                    v
+                }
+            }
+            (B::RayHitTest, 4) => {
+                let (p, r) = (tr(&a[0]), tr(&a[1]));
+                let hits = self.hits(mask, &p, &r, false);
+                self.write_back(&c.exprs[2], &triples(&hits, n, |h| h.1), mask);
+                self.write_back(&c.exprs[3], &triples(&hits, n, |h| h.2), mask);
+                Value::Float(Slot::Varying(
+                    hits.iter().map(|h| h.map_or(NO_HIT, |h| h.0)).collect(),
+                ))
+            }
+            (B::FullTrace, 7) => {
+                let (p, r) = (tr(&a[0]), tr(&a[1]));
+                let hits = self.hits(mask, &p, &r, true);
+                let e = c.exprs;
+                let dist = hits.iter().map(|h| h.map_or(NO_HIT, |h| h.0)).collect();
+                self.write_back(&e[2], &Value::Float(Slot::Varying(dist)), mask);
+                self.write_back(&e[3], &triples(&hits, n, |h| h.1), mask);
+                self.write_back(&e[4], &triples(&hits, n, |h| h.2), mask);
+                // The ray that missed everything: this one, when it missed (one bounce).
+                let miss = |i: usize, v: Vec3| if hits[i].is_some() { Vec3::ZERO } else { v };
+                let pm = (0..n).map(|i| miss(i, *p.at(i))).collect();
+                let rm = (0..n)
+                    .map(|i| miss(i, r.at(i).normalize_or_zero()))
+                    .collect();
+                self.write_back(&e[5], &Value::Triple(Slot::Varying(pm)), mask);
+                self.write_back(&e[6], &Value::Triple(Slot::Varying(rm)), mask);
+                triples(&hits, n, |h| h.3)
+            }
+            (B::Occlusion, 3) => {
+                let (p, nn, samples) = (tr(&a[0]), tr(&a[1]), fl(&a[2]));
+                let maxdist = self.optional_float(c.pairs, mask, "maxdist", f32::INFINITY);
+                let seed = self.env.seed;
+                let v = self.per_point(mask, Vec3::ZERO, |x, i, t| {
+                    let s = *samples.at(i);
+                    let k = if s.is_finite() {
+                        s.clamp(1.0, 4096.0) as u32
+                    } else {
+                        1
+                    };
+                    Vec3::splat(x.occlusion_at(t, i, *p.at(i), *nn.at(i), k, maxdist, seed))
+                });
+                let Value::Triple(s) = v else { return None };
+                Value::Float(s.map(|c| c.x))
+            }
+            _ => return None,
+        })
+    }
+
+    /// `f(self, point, tracer)` at every running point, `outside` elsewhere; `outside`
+    /// everywhere when there is no tracer.
+    fn per_point(
+        &self,
+        mask: &Mask,
+        outside: Vec3,
+        f: impl Fn(&Self, usize, &dyn RayTracer) -> Vec3,
+    ) -> Value {
+        let Some(t) = self.env.tracer else {
+            return Value::triple(outside);
+        };
+        Value::Triple(Slot::Varying(
+            (0..self.n)
+                .map(|i| if mask.get(i) { f(self, i, t) } else { outside })
+                .collect(),
+        ))
+    }
+
+    /// Where rays from grid point `i` leave: `p` (the call's point) on the grid's surface.
+    pub(crate) fn ray_start(&self, i: usize, p: Vec3) -> RayStart {
+        RayStart {
+            p,
+            ng: self.grid.ng.get(i).copied().unwrap_or(Vec3::ZERO),
+            primitive: self.env.primitive,
+        }
+    }
+
+    /// The colour seen along `r` from `p`; black at the maximum depth.
+    fn trace_colour(&self, t: &dyn RayTracer, i: usize, p: Vec3, r: Vec3) -> Vec3 {
+        let dir = r.as_dvec3().normalize_or_zero();
+        if dir == DVec3::ZERO || self.env.ray_depth >= t.max_depth() {
+            return Vec3::ZERO;
+        }
+        t.trace(&self.ray_start(i, p), dir, self.env.ray_depth, true)
+            .map_or(Vec3::ZERO, |h| h.ci)
+    }
+
+    /// The light transmitted from `p1` to `p2` (1: nothing in between).
+    fn transmission_between(&self, t: &dyn RayTracer, i: usize, p1: Vec3, p2: Vec3) -> Vec3 {
+        match segment(p1, p2) {
+            Some((dir, len)) => t.transmission(&self.ray_start(i, p1), dir, len),
+            None => Vec3::ONE,
+        }
+    }
+
+    /// PRMan's `occlusion()`: the cosine-weighted fraction of the hemisphere about `n` that
+    /// geometry within `maxdist` blocks, from `samples` stratified rays (partial opacity counts
+    /// in part).
+    #[allow(clippy::too_many_arguments)]
+    fn occlusion_at(
+        &self,
+        t: &dyn RayTracer,
+        i: usize,
+        p: Vec3,
+        n: Vec3,
+        samples: u32,
+        maxdist: f32,
+        seed: u32,
+    ) -> f32 {
+        let nd = n.as_dvec3().normalize_or_zero();
+        if nd == DVec3::ZERO {
+            return 0.0;
+        }
+        let start = self.ray_start(i, p);
+        let maxdist = if maxdist > 0.0 {
+            f64::from(maxdist)
+        } else {
+            0.0
+        };
+        let mut blocked = 0.0f64;
+        for k in 0..samples {
+            let u = illume_shade::stratified_sample(p, k, samples, OCCLUSION_STREAM ^ seed);
+            let dir = cosine_direction(nd, u);
+            let through = t.transmission(&start, dir, maxdist);
+            blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
+        }
+        (blocked / f64::from(samples)) as f32
+    }
+
+    /// `shadow("raytrace", Ps)` in a light shader: the shadowed fraction between `Ps` and the
+    /// light position `Ps − L`, over `samples` rays aimed within a disk of radius `blur·|L|`
+    /// about that position.
+    pub(crate) fn raytraced_shadow(
+        &self,
+        mask: &Mask,
+        ps: &Slot<Vec3>,
+        samples: f32,
+        blur: f32,
+    ) -> Vec<f32> {
+        let Some(t) = self.env.tracer else {
+            return vec![0.0; self.n];
+        };
+        let l = match self.global(illume_sl::ast::Global::L) {
+            Value::Triple(s) => s.clone(),
+            _ => Slot::Uniform(Vec3::ZERO),
+        };
+        let blur = f64::from(blur.max(0.0));
+        let count = if blur > 0.0 {
+            samples.clamp(1.0, 4096.0) as u32
+        } else {
+            1
+        };
+        (0..self.n)
+            .map(|i| {
+                if !mask.get(i) {
+                    return 0.0;
+                }
+                let (p, l) = (*ps.at(i), *l.at(i));
+                let target = p.as_dvec3() - l.as_dvec3();
+                let radius = blur * l.as_dvec3().length();
+                let start = self.ray_start(i, p);
+                let mut lit = 0.0f64;
+                for k in 0..count {
+                    let aim = if radius > 0.0 {
+                        let stream = SHADOW_STREAM ^ self.env.seed;
+                        let u = illume_shade::stratified_sample(p, k, count, stream);
+                        target + disk_offset(l.as_dvec3(), u) * radius
+                    } else {
+                        target
+                    };
+                    let Some((dir, len)) = segment(p, aim.as_vec3()) else {
+                        lit += 1.0;
+                        continue;
+                    };
+                    let through = t.transmission(&start, dir, len);
+                    lit += f64::from(through.x + through.y + through.z) / 3.0;
+                }
+                (1.0 - lit / f64::from(count)) as f32
+            })
+            .collect()
+    }
+
+    /// `environment("raytrace", R)`: the colour traced along `R` from `P`.
+    pub(crate) fn raytraced_environment(&self, mask: &Mask, r: &Slot<Vec3>) -> Vec<Vec3> {
+        let p = match self.global(illume_sl::ast::Global::P) {
+            Value::Triple(s) => s.clone(),
+            _ => Slot::Uniform(Vec3::ZERO),
+        };
+        let Some(t) = self.env.tracer else {
+            return vec![Vec3::ZERO; self.n];
+        };
+        (0..self.n)
+            .map(|i| {
+                if mask.get(i) {
+                    self.trace_colour(t, i, *p.at(i), *r.at(i))
+                } else {
+                    Vec3::ZERO
+                }
+            })
+            .collect()
+    }
+
+    /// Per running point: (distance, hit point, normal, colour) of the nearest hit.
+    #[allow(clippy::type_complexity)]
+    fn hits(
+        &self,
+        mask: &Mask,
+        p: &Slot<Vec3>,
+        r: &Slot<Vec3>,
+        shade: bool,
+    ) -> Vec<Option<(f32, Vec3, Vec3, Vec3)>> {
+        let Some(t) = self.env.tracer else {
+            return vec![None; self.n];
+        };
+        (0..self.n)
+            .map(|i| {
+                let dir = r.at(i).as_dvec3().normalize_or_zero();
+                if !mask.get(i) || dir == DVec3::ZERO {
+                    return None;
+                }
+                let shade = shade && self.env.ray_depth < t.max_depth();
+                let h = t.trace(&self.ray_start(i, *p.at(i)), dir, self.env.ray_depth, shade)?;
+                Some((h.t as f32, h.p, h.n, h.ci))
+            })
+            .collect()
+    }
+
+    /// A uniform float optional parameter `name` of the call's `"name", value` pairs.
+    fn optional_float(&mut self, pairs: &[Expr], mask: &Mask, name: &str, default: f32) -> f32 {
+        let mut out = default;
+        for pair in pairs.chunks(2) {
+            let [k, v] = pair else { continue };
+            let key = st(&self.eval(k, mask));
+            let value = self.eval(v, mask);
+            match (key == name, &value) {
+                (true, Value::Float(s)) => out = *s.at(0),
+                (true, _) => self.problem(format!("optional parameter \"{name}\" must be a float")),
+                (false, _) => {
+                    self.problem(format!("unknown optional parameter \"{key}\"; ignored"))
+                }
+            }
+        }
+        out
+    }
+}
+
+/// A point of the unit disk perpendicular to `axis` from two uniform numbers (concentric by
+/// polar mapping: `r = √a`).
+fn disk_offset(axis: DVec3, (a, b): (f64, f64)) -> DVec3 {
+    let w = axis.normalize_or_zero();
+    let helper = if w.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
+    let u = w.cross(helper).normalize_or_zero();
+    let v = w.cross(u);
+    let (r, phi) = (a.sqrt(), std::f64::consts::TAU * b);
+    u * (r * phi.cos()) + v * (r * phi.sin())
+}
+
+/// A varying triple from the hits (zero where nothing was hit).
+fn triples(
+    hits: &[Option<(f32, Vec3, Vec3, Vec3)>],
+    n: usize,
+    f: impl Fn(&(f32, Vec3, Vec3, Vec3)) -> Vec3,
+) -> Value {
+    Value::Triple(Slot::Varying(
+        (0..n)
+            .map(|i| hits.get(i).copied().flatten().map_or(Vec3::ZERO, |h| f(&h)))
+            .collect(),
+    ))
+}
