@@ -84,10 +84,17 @@ fn one_sided_disk_visible(prefix: &str) -> bool {
 #[test]
 fn scale_minus_one_and_orientation_flip_normals() {
     let plain = one_sided_disk_visible("");
-    assert_ne!(
+    // The orientation "outside" is relative to the current handedness (RI Spec 3.2): a mirror
+    // keeps the outside outside; "lh"/"rh" resolve against the handedness when called.
+    assert_eq!(
         plain,
         one_sided_disk_visible("Scale -1 1 1"),
-        "mirroring flips the normal"
+        "mirroring keeps the orientation"
+    );
+    assert_ne!(
+        plain,
+        one_sided_disk_visible("Orientation \"rh\" Scale -1 1 1"),
+        "rh in the left-handed world is inside, and stays inside under a later mirror"
     );
     assert_ne!(plain, one_sided_disk_visible("ReverseOrientation"));
     assert_eq!(

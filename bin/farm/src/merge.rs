@@ -37,7 +37,20 @@ pub fn assemble(
     let mut rgba = vec![0.0f32; n * 4];
     let mut z = vec![f32::MAX; n];
     let mut covered = vec![0u8; n];
+    // Every tile of a frame carries the same output variables (the same scene rendered them).
+    let aov_layout = tiles
+        .first()
+        .map(|t| t.aov_layout.clone())
+        .unwrap_or_default();
+    let stride = aov_layout.stride;
+    let mut aov = vec![0.0f32; n * stride];
     for t in tiles {
+        if t.aov_layout != aov_layout {
+            return Err(format!(
+                "tile at ({}, {}) carries other output variables than the frame's first tile",
+                t.x0, t.y0
+            ));
+        }
         if (t.xres, t.yres) != (xres, yres) {
             return Err(format!(
                 "tile at ({}, {}) is from a {}x{} frame, not {xres}x{yres}",
@@ -57,6 +70,8 @@ pub fn assemble(
                 covered[dst] = covered[dst].saturating_add(1);
                 rgba[dst * 4..dst * 4 + 4].copy_from_slice(&t.rgba[src * 4..src * 4 + 4]);
                 z[dst] = t.z[src];
+                aov[dst * stride..(dst + 1) * stride]
+                    .copy_from_slice(&t.aov[src * stride..(src + 1) * stride]);
             }
         }
     }
@@ -74,6 +89,8 @@ pub fn assemble(
         height: h,
         rgba,
         z,
+        aov_layout,
+        aov,
         stats: Default::default(),
         warnings: Vec::new(),
     })
@@ -189,7 +206,7 @@ fn displays_under(mut frame: illume_ri::Frame, cwd: &std::path::Path) -> illume_
             name: "ri.tif".into(),
             kind: "tiff".into(),
             mode: "rgba".into(),
-            params: Vec::new(),
+            ..Default::default()
         });
     }
     for d in &mut frame.options.displays {

@@ -283,9 +283,11 @@ fn submit_without_sbatch_exits_2_and_writes_nothing() {
 }
 
 /// Two frames, a wide Gaussian filter (its margin crosses tile edges), 8-bit dithered TIFF and
-/// float EXR with depth: everything that could differ between tiles and a full render.
+/// float EXR with depth, and a float EXR of arbitrary output variables (issue 20): everything
+/// that could differ between tiles and a full render.
 const SCENE: &str = "FrameBegin 1\nFormat 45 31 1\nPixelSamples 2 2\nPixelFilter \"gaussian\" 3 3\n\
     Display \"a1.tif\" \"tiff\" \"rgba\"\nDisplay \"+a1.exr\" \"openexr\" \"rgbaz\"\n\
+    Display \"+a1aov.exr\" \"openexr\" \"rgba,__diffuse,__specular,N,s\"\n\
     Projection \"perspective\" \"fov\" [40]\nWorldBegin\nTranslate 0 0 4\nSurface \"plastic\"\n\
     LightSource \"distantlight\" 1\nAttributeBegin Color [1 0.3 0.2] Sphere 1 -1 1 360 AttributeEnd\n\
     AttributeBegin Translate 1 0.5 1.5 Opacity [0.5 0.5 0.5] Sphere 0.6 -0.6 0.6 360 AttributeEnd\n\
@@ -378,7 +380,7 @@ fn merge_refuses_incomplete_frames_then_matches_a_full_render_bit_for_bit() {
             .iter()
             .all(|w| w.is_ok()));
     }
-    for name in ["a1.tif", "a1.exr", "a2.tif"] {
+    for name in ["a1.tif", "a1.exr", "a1aov.exr", "a2.tif"] {
         let merged = std::fs::read(dir.join(name)).unwrap();
         let full = std::fs::read(reference.join(name)).unwrap();
         assert!(

@@ -255,6 +255,20 @@ fn render_frame(
                 s.micropolygons as f64 / render_seconds
             );
         }
+        let names: Vec<&str> = rendered
+            .aov_layout
+            .channels
+            .iter()
+            .map(|c| c.name.as_str())
+            .collect();
+        eprintln!(
+            "  aov       {} variables ({} floats per visible point){}  largest bucket store {:.2} MB  images {:.2} MB",
+            names.len(),
+            s.aov_stride,
+            if names.is_empty() { String::new() } else { format!(": {}", names.join(",")) },
+            s.aov_bucket_peak_bytes as f64 / 1048576.0,
+            s.aov_image_bytes as f64 / 1048576.0
+        );
         if let Some(kb) = peak_memory_kb() {
             eprintln!("  memory    peak {:.1} MB (VmHWM)", kb as f64 / 1024.0);
         }

@@ -35,6 +35,7 @@ fn main() {
         basis: (bezier, 3, bezier, 3),
         texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
         trim_curves: None,
+        warnings: None,
     };
     let sphere = Request::Sphere {
         radius: 1.0,

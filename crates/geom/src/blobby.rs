@@ -87,7 +87,7 @@ pub fn build_blobby(
         vertex: nleaf,
         facevarying: nleaf,
     };
-    let vars = resolve("Blobby", params, ctx.declarations, &counts)?;
+    let vars = resolve("Blobby", params, ctx.declarations, &counts, ctx.warnings)?;
     let mut warnings = Vec::new();
     if field.has_repeller() {
         warnings.push(
@@ -110,7 +110,9 @@ pub fn build_blobby(
     let shared = Arc::new(Shared {
         field,
         camera_from_object: m,
-        normal_to_camera: DMat3::from_mat4(m).inverse().transpose(),
+        // Signed like the camera-space `dPdu × dPdv` of the triangles (a mirroring transform
+        // reverses their winding), so the hider's orientation flip treats both alike.
+        normal_to_camera: DMat3::from_mat4(m).inverse().transpose() * m.determinant().signum(),
         reach: h,
     });
     let outward = |p: DVec3| -> DVec3 {
@@ -131,7 +133,7 @@ pub fn build_blobby(
             n: t.map(|i| normals[i as usize]),
         });
         let mut svars = vec![SurfaceVar {
-            name: "N".to_string(),
+            name: crate::grid::SMOOTH_N.to_string(),
             ty: Type::Normal,
             components: 3,
             interp: Interp::Field(FieldRef(Arc::new(TriangleVar {
@@ -227,6 +229,8 @@ fn user_vars(vars: &[crate::PrimVar], m: &DMat4, nleaf: usize) -> Vec<UserVar> {
 struct Shared {
     field: Arc<BlobbyField>,
     camera_from_object: DMat4,
+    /// Object-space normals to camera space, times the sign of the determinant: the smooth
+    /// normal is a default `N`, oriented like `dPdu × dPdv`.
     normal_to_camera: DMat3,
     /// How far (object space) a point may move onto the isosurface: one lattice cell (half a
     /// cell missed the groove of a `max` union on a 16-cell lattice). The

@@ -157,7 +157,7 @@ pub fn build_curves(
         vertex,
         facevarying: varying,
     };
-    let vars = resolve("Curves", params, ctx.declarations, &counts)?;
+    let vars = resolve("Curves", params, ctx.declarations, &counts, ctx.warnings)?;
     let m = &ctx.camera_from_object;
     let p = vars
         .iter()
@@ -305,6 +305,7 @@ mod tests {
             basis: (b, step, b, step),
             texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
             trim_curves: None,
+            warnings: None,
         };
         let p: Vec<f32> = (0..3 * n).map(|k| (k * k % 7) as f32).collect();
         let params = vec![Param {

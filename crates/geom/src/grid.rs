@@ -12,6 +12,19 @@ pub struct GridVar {
     pub data: Vec<f32>,
 }
 
+/// The surface variable name under which a primitive hands the dicer a smooth default normal
+/// (a subdivision surface's limit normal, a blobby's field gradient): taken as `N` but, unlike
+/// a user's `N`, flipped with `Ng` by the orientation. Not a valid RIB identifier, so it can
+/// not collide with a declared variable.
+pub const SMOOTH_N: &str = "N(smooth)";
+
+/// Surface variable names under which a primitive hands the dicer the `u`, `v` the shaders
+/// see when they are not the surface's own parameters: a polygon's are its object-space
+/// (x, y) (RI Spec 3.2 §5.1, as PRMan and Aqsis give). `du`, `dv` and `dPdu`, `dPdv` stay
+/// those of the surface parameters. Not valid RIB identifiers.
+pub const PARAM_U: &str = "u(object)";
+pub const PARAM_V: &str = "v(object)";
+
 /// `nu × nv` vertices, row-major with u fastest: vertex `(i, j)` is at `j * nu + i`.
 /// All positions and vectors are in camera space.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -19,8 +32,13 @@ pub struct Grid {
     pub nu: usize,
     pub nv: usize,
     pub p: Vec<Vec3>,
-    /// Shading normal: the user's `N` if given, else equal to `ng`. Unit length.
+    /// Shading normal: the user's `N` if given, else a default (`ng`, or the smooth normal a
+    /// subdivision surface or blobby provides, oriented like `ng`). Unit length.
     pub n: Vec<Vec3>,
+    /// Whether `n` is the user's `N` primitive variable: the orientation flip (RI Spec 3.2
+    /// `Orientation`, mirroring transforms) applies to `ng` and a default `n`, never to a
+    /// normal the user supplied.
+    pub user_normals: bool,
     /// Geometric normal `normalize(dPdu × dPdv)`, unflipped. Unit length (a degenerate point
     /// takes its neighbour's normal).
     pub ng: Vec<Vec3>,

@@ -111,6 +111,9 @@ pub struct BuildContext<'a> {
     pub texture_coordinates: [f32; 8],
     /// Current `TrimCurve` loops (an attribute), applied to `NuPatch`.
     pub trim_curves: Option<Arc<TrimCurves>>,
+    /// Where building reports what it repaired and carried on with (a primitive variable with
+    /// the wrong number of values, cut to fit or dropped); `None` discards them.
+    pub warnings: Option<&'a std::cell::RefCell<Vec<String>>>,
 }
 
 #[derive(Clone, Debug, PartialEq, Error)]

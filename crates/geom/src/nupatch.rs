@@ -301,7 +301,7 @@ pub fn build_nupatch(
         vertex: nu * nv,
         facevarying: 4 * segs_u * segs_v,
     };
-    let vars = resolve("NuPatch", params, ctx.declarations, &counts)?;
+    let vars = resolve("NuPatch", params, ctx.declarations, &counts, ctx.warnings)?;
     let pw = homogeneous_points(&vars, &ctx.camera_from_object).map_err(invalid)?;
     let trim = ctx.trim_curves.clone().filter(|t| !t.is_empty());
     // The control net's extent sets the noise floor of the derivatives (f64 rounding of

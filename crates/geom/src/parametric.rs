@@ -190,6 +190,10 @@ pub struct Parametric {
     vars: Arc<Vec<SurfaceVar>>,
     u: [f64; 2],
     v: [f64; 2],
+    /// The shader's (u, v) range that the surface's `[0,1]²` stands for: `[u0, u1, v0, v1]`.
+    /// A subpatch of a `PatchMesh` reports u, v over the whole mesh (RI Spec 3.2 §5.2, as
+    /// PRMan and Aqsis do), so its `du`, `dPdu` scale with it.
+    span: [f64; 4],
 }
 
 impl Parametric {
@@ -200,6 +204,15 @@ impl Parametric {
             vars,
             u: [0.0, 1.0],
             v: [0.0, 1.0],
+            span: [0.0, 1.0, 0.0, 1.0],
+        }
+    }
+
+    /// The same piece reporting u over `u` and v over `v` (a subpatch's share of its mesh).
+    pub fn spanning(self, u: [f64; 2], v: [f64; 2]) -> Parametric {
+        Parametric {
+            span: [u[0], u[1], v[0], v[1]],
+            ..self
         }
     }
 
@@ -305,11 +318,14 @@ impl Primitive for Parametric {
 
 fn dice(piece: &Parametric, nu: usize, nv: usize) -> Grid {
     let n = nu * nv;
+    // The reported parameters: the surface's, mapped onto the piece's span.
+    let [u0, u1, v0, v1] = piece.span;
+    let (su, sv) = (u1 - u0, v1 - v0);
     let mut g = Grid {
         nu,
         nv,
-        du: ((piece.u[1] - piece.u[0]) / (nu - 1) as f64) as f32,
-        dv: ((piece.v[1] - piece.v[0]) / (nv - 1) as f64) as f32,
+        du: ((piece.u[1] - piece.u[0]) * su / (nu - 1) as f64) as f32,
+        dv: ((piece.v[1] - piece.v[0]) * sv / (nv - 1) as f64) as f32,
         ..Grid::default()
     };
     for f in [&mut g.p, &mut g.n, &mut g.ng, &mut g.dpdu, &mut g.dpdv] {
@@ -325,11 +341,11 @@ fn dice(piece: &Parametric, nu: usize, nv: usize) -> Grid {
         for &u in &us {
             let [p, dpdu, dpdv] = piece.surface.eval(u, v);
             g.p.push(p.as_vec3());
-            g.dpdu.push(dpdu.as_vec3());
-            g.dpdv.push(dpdv.as_vec3());
+            g.dpdu.push((dpdu / su).as_vec3());
+            g.dpdv.push((dpdv / sv).as_vec3());
             g.ng.push(geometric_normal(&*piece.surface, u, v, dpdu, dpdv, centre));
-            g.u.push(u as f32);
-            g.v.push(v as f32);
+            g.u.push((u0 + su * u) as f32);
+            g.v.push((v0 + sv * v) as f32);
         }
     }
     g.n = g.ng.clone();
@@ -395,7 +411,8 @@ fn fill_vars(g: &mut Grid, vars: &[SurfaceVar], us: &[f64], vs: &[f64]) {
         let triples =
             |d: &[f32]| -> Vec<Vec3> { d.chunks_exact(3).map(Vec3::from_slice).collect() };
         match (var.name.as_str(), var.ty, c) {
-            ("N", Type::Normal, 3) => {
+            (name @ ("N" | crate::grid::SMOOTH_N), Type::Normal, 3) => {
+                g.user_normals = name == "N";
                 g.n = triples(&data)
                     .into_iter()
                     .zip(&g.ng)
@@ -404,6 +421,8 @@ fn fill_vars(g: &mut Grid, vars: &[SurfaceVar], us: &[f64], vs: &[f64]) {
             }
             ("Cs", Type::Color, 3) => g.cs = Some(triples(&data)),
             ("Os", Type::Color, 3) => g.os = Some(triples(&data)),
+            (crate::grid::PARAM_U, Type::Float, 1) => g.u = data,
+            (crate::grid::PARAM_V, Type::Float, 1) => g.v = data,
             ("s", Type::Float, 1) => g.s = data,
             ("t", Type::Float, 1) => g.t = data,
             ("st", Type::Float, 2) => {

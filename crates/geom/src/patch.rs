@@ -250,7 +250,7 @@ pub fn build_mesh(
         vertex: u.n * v.n,
         facevarying: patches.saturating_mul(4),
     };
-    let vars = resolve(request, params, ctx.declarations, &counts)?;
+    let vars = resolve(request, params, ctx.declarations, &counts, ctx.warnings)?;
     let pts = positions(request, &vars, &u, &v)?;
     let m = &ctx.camera_from_object;
     let mut out: Vec<Box<dyn Primitive>> = Vec::with_capacity(patches);
@@ -274,10 +274,11 @@ pub fn build_mesh(
                 &ctx.texture_coordinates,
                 [[i0, j0], [i1, j0], [i0, j1], [i1, j1]],
             );
-            out.push(Box::new(Parametric::new(
-                surface,
-                Arc::new(with_default_st(svars, st)),
-            )));
+            // u, v run over the whole mesh, as s, t do.
+            out.push(Box::new(
+                Parametric::new(surface, Arc::new(with_default_st(svars, st)))
+                    .spanning([i0, i1], [j0, j1]),
+            ));
         }
     }
     Ok(out)

@@ -71,7 +71,7 @@ pub fn build_points(
         vertex: n,
         facevarying: n,
     };
-    let vars = resolve("Points", params, ctx.declarations, &counts)?;
+    let vars = resolve("Points", params, ctx.declarations, &counts, ctx.warnings)?;
     let m = &ctx.camera_from_object;
     let p = vars
         .iter()

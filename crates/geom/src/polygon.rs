@@ -155,7 +155,7 @@ pub fn build_polygons(
         vertex: topo.vertices,
         facevarying: corners,
     };
-    let vars = resolve(name, params, ctx.declarations, &counts)?;
+    let vars = resolve(name, params, ctx.declarations, &counts, ctx.warnings)?;
     let pts = positions(name, &vars)?;
     let mut out: Vec<Box<dyn Primitive>> = Vec::new();
     for (f, face) in topo.faces.iter().enumerate() {
@@ -166,7 +166,8 @@ pub fn build_polygons(
             let svars = surface_vars(&vars, &ctx.camera_from_object, |v| {
                 piece_interp(v, f, &piece)
             });
-            let svars = with_default_st(svars, default_st(&pts, &piece));
+            let mut svars = with_default_st(svars, default_st(&pts, &piece));
+            svars.extend(object_uv(&pts, &piece));
             out.push(Box::new(Parametric::new(
                 Arc::new(surface) as Arc<dyn Surface>,
                 Arc::new(svars),
@@ -186,6 +187,22 @@ fn default_st(pts: &[DVec3], piece: &[Corner; 4]) -> [SurfaceVar; 2] {
         interp: Interp::Bilinear(piece.map(|c| vec![axis(pts[c.vertex])])),
     };
     [var("s", |p| p.x), var("t", |p| p.y)]
+}
+
+/// A polygon's u, v: object-space x, y (RI Spec 3.2 §5.1), as PRMan and Aqsis give them,
+/// rather than the parameters of the bilinear piece it is diced as.
+fn object_uv(pts: &[DVec3], piece: &[Corner; 4]) -> [SurfaceVar; 2] {
+    let [u, v] = default_st(pts, piece);
+    [
+        SurfaceVar {
+            name: crate::grid::PARAM_U.to_string(),
+            ..u
+        },
+        SurfaceVar {
+            name: crate::grid::PARAM_V.to_string(),
+            ..v
+        },
+    ]
 }
 
 fn piece_interp(var: &PrimVar, face: usize, piece: &[Corner; 4]) -> Interp {

@@ -6,6 +6,7 @@
 use crate::parametric::{Interp, SurfaceVar};
 use crate::GeomError;
 use illume_rib::{Class, Declaration, Param, Type, Value};
+use std::cell::RefCell;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum PrimVarData {
@@ -119,13 +120,20 @@ fn predeclared(name: &str) -> Option<Declaration> {
 ///
 /// Inline declarations win over `declarations`, which win over the spec's predeclared names.
 /// A parameter nobody declared cannot be interpreted and is skipped (`ri` reports unknown
-/// parameters); a count mismatch or a malformed inline declaration is an error that names the
-/// variable, the count found and the count expected.
+/// parameters); a malformed inline declaration is an error.
+///
+/// A variable with the wrong number of values is repaired, as Aqsis and PRMan do, instead of
+/// losing the primitive (real files have them: the regression suite's `Bug1412162` gives
+/// `"st"` 9 values where 8 are needed): too many are cut to the count expected, too few drop
+/// that variable only. Either way a warning naming the variable, the count found and the
+/// count expected goes to `warnings`. A position (`P`, `Pw`, `Pz`) with the wrong count stays
+/// an error: it decides the primitive's shape.
 pub fn resolve(
     request: &str,
     params: &[Param],
     declarations: &dyn Fn(&str) -> Option<Declaration>,
     counts: &ClassCounts,
+    warnings: Option<&RefCell<Vec<String>>>,
 ) -> Result<Vec<PrimVar>, GeomError> {
     let mut vars = Vec::with_capacity(params.len());
     for param in params {
@@ -140,18 +148,49 @@ pub fn resolve(
         else {
             continue;
         };
-        vars.push(resolve_one(request, name, &decl, &param.value, counts)?);
+        let mismatch = count_mismatch(name, &decl, &param.value, counts);
+        let data = match mismatch {
+            None => resolve_data(request, name, &decl, &param.value)?,
+            Some((message, _)) if matches!(name, "P" | "Pw" | "Pz") => {
+                return Err(GeomError::Invalid {
+                    request: request.to_string(),
+                    message,
+                })
+            }
+            Some((message, expected)) if param.value.len() > expected => {
+                warn(warnings, format!("{message}; using the first {expected}"));
+                truncate(resolve_data(request, name, &decl, &param.value)?, expected)
+            }
+            Some((message, _)) => {
+                warn(warnings, format!("{message}; the variable is ignored"));
+                continue;
+            }
+        };
+        vars.push(PrimVar {
+            name: name.to_string(),
+            class: decl.class,
+            ty: decl.ty,
+            array_len: decl.array_len,
+            data,
+        });
     }
     Ok(vars)
 }
 
-fn resolve_one(
-    request: &str,
+fn warn(warnings: Option<&RefCell<Vec<String>>>, message: String) {
+    if let Some(w) = warnings {
+        w.borrow_mut().push(message);
+    }
+}
+
+/// `None` when `value` has the number of values `decl` needs on a primitive of `counts`,
+/// else the message that says so and the count expected.
+fn count_mismatch(
     name: &str,
     decl: &Declaration,
     value: &Value,
     counts: &ClassCounts,
-) -> Result<PrimVar, GeomError> {
+) -> Option<(String, usize)> {
     let n = counts.count(decl.class);
     // Saturating: hostile counts or array lengths must not overflow (they only fail the check).
     let expected = n.saturating_mul(decl.ty.components().saturating_mul(decl.array_len));
@@ -161,18 +200,40 @@ fn resolve_one(
     } else {
         String::new()
     };
-    if found != expected {
-        return Err(GeomError::Invalid {
-            request: request.to_string(),
-            message: format!(
-                "\"{name}\" has {found} values, expected {expected} ({} {}{array}, {n} {})",
-                decl.class,
-                decl.ty,
-                ClassCounts::unit(decl.class)
-            ),
-        });
+    (found != expected).then(|| {
+        let message = format!(
+            "\"{name}\" has {found} values, expected {expected} ({} {}{array}, {n} {})",
+            decl.class,
+            decl.ty,
+            ClassCounts::unit(decl.class)
+        );
+        (message, expected)
+    })
+}
+
+/// The first `n` values.
+fn truncate(data: PrimVarData, n: usize) -> PrimVarData {
+    match data {
+        PrimVarData::Floats(mut v) => {
+            v.truncate(n);
+            PrimVarData::Floats(v)
+        }
+        PrimVarData::Strings(mut v) => {
+            v.truncate(n);
+            PrimVarData::Strings(v)
+        }
     }
-    let data = match (decl.ty, value) {
+}
+
+/// The values of `value` as `decl`'s type says; numbers for a string (or the reverse) are an
+/// error.
+fn resolve_data(
+    request: &str,
+    name: &str,
+    decl: &Declaration,
+    value: &Value,
+) -> Result<PrimVarData, GeomError> {
+    Ok(match (decl.ty, value) {
         (Type::String, Value::Strings(s)) => PrimVarData::Strings(s.clone()),
         (Type::String, _) | (_, Value::Strings(_)) => {
             return Err(GeomError::Invalid {
@@ -189,13 +250,6 @@ fn resolve_one(
             })
         }
         (_, v) => PrimVarData::Floats(v.as_floats().unwrap_or_default()),
-    };
-    Ok(PrimVar {
-        name: name.to_string(),
-        class: decl.class,
-        ty: decl.ty,
-        array_len: decl.array_len,
-        data,
     })
 }
 
@@ -264,23 +318,66 @@ mod tests {
     }
 
     #[test]
-    fn varying_color_count_mismatch_names_what_was_expected() {
+    fn too_few_values_drop_the_variable_with_a_warning_that_names_the_counts() {
         let counts = ClassCounts {
             uniform: 1,
             varying: 4,
             vertex: 4,
             facevarying: 4,
         };
-        let err = resolve(
+        let warnings = RefCell::new(Vec::new());
+        let vars = resolve(
             "PointsPolygons",
-            &[param("Cs", Value::Floats(vec![0.5; 5]))],
+            &[
+                param("Cs", Value::Floats(vec![0.5; 5])),
+                param("s", Value::Floats(vec![0.25; 4])),
+            ],
             &no_decls,
             &counts,
+            Some(&warnings),
+        )
+        .unwrap();
+        assert_eq!(vars.len(), 1);
+        assert_eq!(vars[0].name, "s");
+        assert_eq!(
+            warnings.into_inner(),
+            vec!["\"Cs\" has 5 values, expected 12 (varying color, 4 varying points); the variable is ignored"]
+        );
+    }
+
+    #[test]
+    fn too_many_values_are_cut_to_the_count_expected() {
+        // Aqsis's Bug1412162: "st" with 9 values on a 4-point polygon.
+        let st = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0];
+        let warnings = RefCell::new(Vec::new());
+        let vars = resolve(
+            "Polygon",
+            &[param("st", Value::Floats(st.to_vec()))],
+            &no_decls,
+            &ClassCounts::surface(4),
+            Some(&warnings),
+        )
+        .unwrap();
+        assert_eq!(vars[0].floats(), &st[..8]);
+        let w = warnings.into_inner();
+        assert_eq!(w.len(), 1);
+        assert!(w[0].contains("\"st\" has 9 values, expected 8"), "{w:?}");
+        assert!(w[0].ends_with("using the first 8"), "{w:?}");
+    }
+
+    #[test]
+    fn a_position_with_the_wrong_count_is_still_an_error() {
+        let err = resolve(
+            "Patch",
+            &[param("P", Value::Floats(vec![0.0; 13]))],
+            &no_decls,
+            &ClassCounts::surface(4),
+            None,
         )
         .unwrap_err();
         assert_eq!(
             err.to_string(),
-            "PointsPolygons: \"Cs\" has 5 values, expected 12 (varying color, 4 varying points)"
+            "Patch: \"P\" has 13 values, expected 12 (vertex point, 4 vertices)"
         );
     }
 
@@ -296,6 +393,7 @@ mod tests {
             ],
             &decls,
             &counts,
+            None,
         )
         .unwrap();
         assert_eq!(vars[0].class, Class::Vertex);
@@ -311,6 +409,7 @@ mod tests {
             &[param("mystery", Value::Floats(vec![1.0]))],
             &no_decls,
             &counts,
+            None,
         )
         .unwrap();
         assert!(vars.is_empty());
@@ -319,6 +418,7 @@ mod tests {
             &[param("constant string tex", Value::Floats(vec![1.0]))],
             &no_decls,
             &counts,
+            None,
         );
         assert!(err.is_err());
     }

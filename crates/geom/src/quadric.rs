@@ -481,7 +481,13 @@ pub fn build_quadric(
     ctx: &BuildContext,
 ) -> Result<Vec<Box<dyn Primitive>>, GeomError> {
     let name = request.name();
-    let vars = resolve(name, params, ctx.declarations, &ClassCounts::surface(4))?;
+    let vars = resolve(
+        name,
+        params,
+        ctx.declarations,
+        &ClassCounts::surface(4),
+        ctx.warnings,
+    )?;
     let Some(shape) = Shape::from_request(request)? else {
         return Ok(Vec::new());
     };

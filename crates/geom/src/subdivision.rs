@@ -404,7 +404,13 @@ pub fn control_mesh_of(
         vertex: nverts,
         facevarying: corners,
     };
-    let vars = resolve("SubdivisionMesh", params, ctx.declarations, &counts)?;
+    let vars = resolve(
+        "SubdivisionMesh",
+        params,
+        ctx.declarations,
+        &counts,
+        ctx.warnings,
+    )?;
     let mut mesh = control_mesh(faces, nverts, &vars, &ctx.camera_from_object).map_err(invalid)?;
     apply_tags(&mut mesh, &a).map_err(invalid)?;
     Ok((mesh, vars))
@@ -648,7 +654,7 @@ fn quads(
         }
         if !svars.iter().any(|v| v.name == "N") {
             svars.push(SurfaceVar {
-                name: "N".to_string(),
+                name: crate::grid::SMOOTH_N.to_string(),
                 ty: Type::Normal,
                 components: 3,
                 interp: Interp::Bilinear(order.map(|v| normals[v].to_array().to_vec())),

@@ -69,6 +69,7 @@ fn corpus_geometry_builds_and_dices_inside_its_bounds() {
                 basis: bases,
                 texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
                 trim_curves: None,
+                warnings: None,
             };
             match build(req, &ctx) {
                 Ok(list) => {

@@ -1,7 +1,7 @@
 //! Polygons against exact areas, winding, variables and bad input.
 mod support;
 use glam::{DMat4, DVec3, Vec3};
-use illume_geom::{build, GeomError};
+use illume_geom::{build, BuildContext, GeomError};
 use illume_rib::{Param, Request, Value};
 use support::*;
 
@@ -168,11 +168,20 @@ fn bad_polygons_are_errors_with_counts() {
         params: vec![floats("P", &square)],
     };
     assert!(build(&r, &ctx()).is_err());
+    // A primitive variable with too few values is dropped with a warning; the polygon stays.
     let r = Request::Polygon {
         params: vec![floats("P", &square), floats("Cs", &[1.0; 5])],
     };
-    let e = build(&r, &ctx()).unwrap_err().to_string();
-    assert!(e.contains("\"Cs\" has 5 values, expected 12"), "{e}");
+    let warnings = std::cell::RefCell::new(Vec::new());
+    let c = BuildContext {
+        warnings: Some(&warnings),
+        ..ctx()
+    };
+    let built = build(&r, &c).unwrap();
+    assert_eq!(built.len(), 1);
+    assert!(built[0].dice(2, 2).cs.is_none(), "Cs was dropped");
+    let w = warnings.into_inner();
+    assert!(w[0].contains("\"Cs\" has 5 values, expected 12"), "{w:?}");
     let mut nan = square.clone();
     nan[4] = f32::NAN;
     assert!(build(
@@ -201,7 +210,14 @@ fn bad_polygons_are_errors_with_counts() {
             floats("varying float[4611686018427387904] big", &[1.0]),
         ],
     };
-    assert!(build(&r, &ctx()).is_err());
+    // A hostile array length is only too few values: that variable is dropped, with a warning.
+    let warnings = std::cell::RefCell::new(Vec::new());
+    let c = BuildContext {
+        warnings: Some(&warnings),
+        ..ctx()
+    };
+    assert_eq!(build(&r, &c).unwrap().len(), 1);
+    assert!(warnings.into_inner()[0].contains("\"big\" has 1 values"));
     // Degenerate faces (collinear, two vertices) build nothing rather than failing.
     let line = pts(&[[0., 0., 0.], [1., 0., 0.], [2., 0., 0.]]);
     assert!(build_ok(&Request::Polygon {

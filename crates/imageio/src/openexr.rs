@@ -6,6 +6,9 @@
 //! (`one == 0`, e.g. `Quantize "rgba" 0 0 0 0`), then 32-bit float. Depth (`Z`) is always
 //! 32-bit float: half's 11-bit mantissa cannot hold camera depths for shadow lookups.
 //! Channels are named `R`, `G`, `B`, `A`, `Z` (OpenEXR conventions); scanlines, ZIP compression.
+//! Any other channel (an arbitrary output variable: `__diffuse.R`, `N.X`, `s`) keeps its name;
+//! only colour channels (`.R .G .B`) follow the half/float rule, the rest are always float
+//! (normals, positions and texture coordinates need the precision).
 //! Given the camera's [`DepthMatrices`], the header records OpenEXR's standard `worldToCamera`
 //! and `worldToNDC` attributes (Imath row-vector order, the same as RIB's), so compositors and
 //! OpenImageIO can reproject the depth.
@@ -32,12 +35,19 @@ pub(crate) fn write_exr(
     let mut list: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
     for (c, name) in image.channels.iter().enumerate() {
         let values = image.data.iter().skip(c).step_by(nc);
-        let samples = if name == "z" || float_color {
+        let colour = matches!(name.as_str(), "r" | "g" | "b" | "a")
+            || [".R", ".G", ".B"].iter().any(|s| name.ends_with(s));
+        let samples = if !colour || float_color {
             FlatSamples::F32(values.copied().collect())
         } else {
             FlatSamples::F16(values.map(|&v| f16::from_f32(v)).collect())
         };
-        let exr_name = Text::new_or_none(name.to_ascii_uppercase()).ok_or_else(|| {
+        let exr_name = if matches!(name.as_str(), "r" | "g" | "b" | "a" | "z") {
+            name.to_ascii_uppercase()
+        } else {
+            name.clone()
+        };
+        let exr_name = Text::new_or_none(exr_name).ok_or_else(|| {
             format_error(
                 path,
                 format!("OpenEXR: expected a channel name under 256 bytes, found `{name}`"),

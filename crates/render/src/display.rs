@@ -9,6 +9,8 @@ use std::path::PathBuf;
 pub enum DisplayError {
     #[error("Display \"{name}\": unknown mode \"{mode}\"")]
     Mode { name: String, mode: String },
+    #[error("Display \"{name}\": {message}")]
+    Channels { name: String, message: String },
     #[error(transparent)]
     Image(#[from] ImageError),
     #[error(transparent)]
@@ -54,8 +56,15 @@ pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay,
         name: "ri.tif".into(),
         kind: "tiff".into(),
         mode: "rgba".into(),
-        params: Vec::new(),
+        ..Default::default()
     }];
+    // Every variable the hider carried, as the mode parser's last source of types.
+    let rendered_vars: crate::aov::SlOutputs = r
+        .aov_layout
+        .channels
+        .iter()
+        .map(|c| (c.name.clone(), c.components, c.colour))
+        .collect();
     let displays = if frame.options.displays.is_empty() {
         &default[..]
     } else {
@@ -73,13 +82,30 @@ pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay,
             // mode says: the same file `MakeShadow` makes from a zfile.
             let shadow = d.kind == "shadow";
             let mode = if shadow { "z" } else { d.mode.as_str() };
-            let Some(image) = display_image(r, mode) else {
-                return Err(DisplayError::Mode {
-                    name: d.name.clone(),
-                    mode: d.mode.clone(),
-                });
-            };
             let framebuffer = d.kind == "framebuffer";
+            let letters = display_image(r, mode);
+            let mut non_colour = false;
+            let image = match letters {
+                Some(image) => image,
+                None if mode.contains(',') || !mode.is_empty() => {
+                    let channels = |message| DisplayError::Channels {
+                        name: d.name.clone(),
+                        message,
+                    };
+                    let items =
+                        crate::aov::mode_items(d, frame, &rendered_vars).map_err(channels)?;
+                    non_colour = crate::aov_display::has_non_colour(&items);
+                    let kind = if framebuffer { "png" } else { d.kind.as_str() };
+                    crate::aov_display::aov_image(r, &items, &kind.to_ascii_lowercase())
+                        .map_err(channels)?
+                }
+                None => {
+                    return Err(DisplayError::Mode {
+                        name: d.name.clone(),
+                        mode: d.mode.clone(),
+                    })
+                }
+            };
             let (path, kind) = if framebuffer {
                 let p = PathBuf::from(&d.name);
                 let p = if p.extension().is_some_and(|e| e == "png") {
@@ -101,6 +127,12 @@ pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay,
                 min: q.min,
                 max: q.max,
                 dither: q.dither,
+            };
+            // Depth and non-colour variables are never quantized, dithered or clamped.
+            let q = if non_colour {
+                Quantize::FLOAT
+            } else {
+                crate::aov_display::display_quantize(d, q)
             };
             if shadow {
                 let opts = illume_texture::MakeOptions {

@@ -5,13 +5,17 @@
 //! texture file or an image format is lives here.
 #![forbid(unsafe_code)]
 
+pub mod aov;
+mod aov_display;
 pub mod display;
 mod frame_loop;
+mod imaging;
 mod rayscene;
 mod renderinfo;
 mod shading;
 mod slshaders;
 mod tile;
+mod volumes;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};
 pub use frame_loop::{render_frames_in_order, texture_maker};
@@ -35,8 +39,11 @@ pub struct RenderSettings<'a> {
 /// Renders one frame (uses the current rayon pool: `ThreadPool::install` to choose threads).
 pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let mut hider = Hider::new(frame);
-    let (shading, binding_warnings) = FrameShading::new(frame, settings.textures);
+    let (mut shading, binding_warnings) = FrameShading::new(frame, settings.textures);
     hider.warnings.extend(binding_warnings);
+    let (layout, _) = aov::frame_layout(frame, &shading.sl.surface_outputs());
+    shading.aov = layout.clone();
+    hider.set_aovs(layout);
     let mut rendered = hider.render(&shading, settings.progress);
     rendered.stats.nonfinite = shading.nonfinite.load(Relaxed);
     // Shading problems found while rendering (missing maps, unknown spaces), once each.

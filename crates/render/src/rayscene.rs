@@ -105,11 +105,7 @@ pub(crate) fn emitter(frame: &Frame, light: usize) -> AreaEmitter {
         if fp.attributes.area_light != Some(light) {
             continue;
         }
-        let flip = if fp.attributes.orientation_rh {
-            -1.0
-        } else {
-            1.0
-        };
+        let flip = fp.normal_sign();
         for g in diced(fp.primitive.as_ref(), &frame.camera, MIN_EMITTER_SEGMENTS) {
             // Every other vertex: the coarse grid (the fine one only measures chord error).
             let (nu, nv) = (g.nu.div_ceil(2), g.nv.div_ceil(2));

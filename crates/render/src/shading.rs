@@ -2,11 +2,13 @@
 //! bound once (parameters parsed, unknown names reported once), then every diced grid is copied
 //! into a [`ShadingGrid`] and shaded with the lights that illuminate it. `Surface "null"` skips
 //! shading (depth passes keep `Os`).
+use crate::imaging::FrameImager;
 use crate::rayscene::{self, RayScene};
 use crate::slshaders::SlShaders;
+use crate::volumes::{FrameVolumes, GridRelight, VolumeSlot};
 use glam::{DMat4, Vec3};
 use illume_geom::Grid;
-use illume_reyes::{GridShader, Shaded};
+use illume_reyes::{AovLayout, GridShader, PixelBlock, Shaded};
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{
     displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
@@ -45,6 +47,8 @@ pub(crate) struct FrameShading<'a> {
     seed: u32,
     /// The camera's clipping planes, for `depth()`.
     clipping: (f32, f32),
+    /// `Option "shadow" "bias"`: SL `shadow()` calls that pass no `"bias"` use it.
+    shadow_bias: f32,
     /// What SL `option()` reads, and `attribute()` per distinct attribute set (keyed by the
     /// address of the frame's shared `Attributes`).
     options: illume_shade::RenderInfo,
@@ -52,7 +56,13 @@ pub(crate) struct FrameShading<'a> {
     pub warnings: WarnOnce,
     pub nonfinite: AtomicU64,
     /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
-    sl: SlShaders,
+    pub(crate) sl: SlShaders,
+    /// The frame's `Imager`, run on each bucket's filtered pixels.
+    imager: Option<FrameImager>,
+    /// The output variables the displays ask for (none: no records are made).
+    pub(crate) aov: AovLayout,
+    /// `Atmosphere`/`Interior`/`Exterior` shaders.
+    volumes: FrameVolumes,
 }
 
 fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
@@ -129,6 +139,8 @@ impl<'a> FrameShading<'a> {
     ) -> (FrameShading<'a>, Vec<Diagnostic>) {
         let mut diags = Vec::new();
         let sl = SlShaders::bind(frame, &mut diags);
+        let imager = FrameImager::bind(frame, &mut diags);
+        let volumes = FrameVolumes::bind(frame, &mut diags);
         let default_surface = Arc::new(Surface::default_surface());
         let surfaces = bind_surfaces(frame, &sl, &default_surface, &mut diags);
         let mut displacements: HashMap<usize, BoundDisplacement> = HashMap::new();
@@ -216,6 +228,9 @@ impl<'a> FrameShading<'a> {
             rays: None,
             seed: frame.number.unwrap_or(0) as u32,
             clipping: (frame.camera.near as f32, frame.camera.far as f32),
+            // PRMan draws each lookup's bias between bias0 and bias1; one value, their mean,
+            // keeps the result deterministic.
+            shadow_bias: 0.5 * (frame.options.shadow_bias[0] + frame.options.shadow_bias[1]),
             options: crate::renderinfo::options(frame),
             attribute_info: {
                 let mut m = HashMap::new();
@@ -228,13 +243,16 @@ impl<'a> FrameShading<'a> {
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
             sl,
+            imager,
+            aov: AovLayout::default(),
+            volumes,
         };
         if needs_rays {
             // Casters are displaced like the grids the camera sees, so a displaced surface
             // casts its displaced shadow.
             let displaced = |prim: usize, grid: &Grid| {
                 let attrs = &frame.primitives[prim].attributes;
-                let flip = if attrs.orientation_rh { -1.0 } else { 1.0 };
+                let flip = frame.primitives[prim].normal_sign();
                 shading.displaced_positions(grid, attrs, flip, prim)
             };
             shading.rays = Some(RayScene::build(frame, &displaced));
@@ -290,7 +308,9 @@ impl<'a> FrameShading<'a> {
         let n = grid.len();
         let mut g = ShadingGrid::new(grid.nu, grid.nv);
         g.p.clone_from(&grid.p);
-        g.n = grid.n.iter().map(|v| *v * flip).collect();
+        // The user's N is theirs: only Ng and a default N follow the orientation.
+        let n_flip = if grid.user_normals { 1.0 } else { flip };
+        g.n = grid.n.iter().map(|v| *v * n_flip).collect();
         g.ng = grid.ng.iter().map(|v| *v * flip).collect();
         g.dpdu.clone_from(&grid.dpdu);
         g.dpdv.clone_from(&grid.dpdv);
@@ -317,14 +337,28 @@ impl<'a> FrameShading<'a> {
 
     /// The shading environment of frame primitive `prim`, "shader" space the surface's.
     fn env(&self, attrs: &Attributes, prim: usize) -> ShadingEnv<'_> {
-        let mut env = ShadingEnv::new();
-        env.camera_from_world = self.camera_from_world;
+        let mut env = self.frame_env();
         let camera_from_shader = attrs
             .surface
             .as_ref()
             .map_or(DMat4::IDENTITY, |s| s.camera_from_shader);
         env.camera_from_object = camera_from_shader;
         env.camera_from_shader = camera_from_shader;
+        if let Some(r) = &self.rays {
+            env.occlusion = Some(r);
+            env.ray_offset = r.offset(prim);
+        }
+        env.attributes = self
+            .attribute_info
+            .get(&(attrs as *const Attributes as usize));
+        env
+    }
+
+    /// What every shader of the frame shares (spaces, textures, options, warnings): the whole
+    /// environment of an imager, which belongs to no primitive.
+    pub(crate) fn frame_env(&self) -> ShadingEnv<'_> {
+        let mut env = ShadingEnv::new();
+        env.camera_from_world = self.camera_from_world;
         env.coordinate_systems = Some(&self.coordinate_systems);
         env.screen_from_camera = self.screen_from_camera;
         env.ndc_from_camera = self.ndc_from_camera;
@@ -332,16 +366,10 @@ impl<'a> FrameShading<'a> {
         env.specular_model = self.specular_model;
         env.textures = self.textures;
         env.warnings = Some(&self.warnings);
-        if let Some(r) = &self.rays {
-            env.occlusion = Some(r);
-            env.ray_offset = r.offset(prim);
-        }
         env.seed = self.seed;
         env.clipping = self.clipping;
+        env.shadow_bias = self.shadow_bias;
         env.options = Some(&self.options);
-        env.attributes = self
-            .attribute_info
-            .get(&(attrs as *const Attributes as usize));
         env
     }
 
@@ -380,6 +408,7 @@ impl<'a> FrameShading<'a> {
                 p,
                 ci: vec![Vec3::ZERO; grid.len()],
                 oi: os,
+                aov: vec![0.0; grid.len() * self.aov.stride],
             };
         };
         let mut g = self.shading_grid(grid, attrs, flip);
@@ -403,25 +432,67 @@ impl<'a> FrameShading<'a> {
             cache.lights.push((proxy, samples));
             sl_outputs.push(outputs);
         }
-        let nonfinite = match sl_surface {
+        // SL outputs a display names, filled by the SL surface as it runs.
+        let mut sl_wanted: Vec<(&str, Vec<f32>)> = match sl_surface {
+            Some(_) => self
+                .aov
+                .channels
+                .iter()
+                .map(|c| (c.name.as_str(), Vec::new()))
+                .collect(),
+            None => Vec::new(),
+        };
+        let mut view = illume_slvm::Lights::from_cache(&cache);
+        for (light, outputs) in view.lights[builtin_count..].iter_mut().zip(&sl_outputs) {
+            if let illume_slvm::LightSource::Builtin(request) = light.source {
+                light.source = illume_slvm::LightSource::Sl { outputs, request };
+            }
+        }
+        let mut nonfinite = match sl_surface {
             Some(s) => {
-                let mut view = illume_slvm::Lights::from_cache(&cache);
-                for (light, outputs) in view.lights[builtin_count..].iter_mut().zip(&sl_outputs) {
-                    if let illume_slvm::LightSource::Builtin(request) = light.source {
-                        light.source = illume_slvm::LightSource::Sl { outputs, request };
-                    }
-                }
                 let to_surface = illume_slvm::Messages {
                     displacement: self
                         .sl
                         .displacement(attrs)
                         .map_or(Vec::new(), |d| d.parameter_values(&g, &env)),
+                    atmosphere: self.volumes.atmosphere_messages(attrs, &g, &env),
                     ..Default::default()
                 };
-                s.shade_surface_with(&mut g, &view, &env, to_surface)
+                s.shade_surface_outputs(&mut g, &view, &env, to_surface, &mut sl_wanted)
                     .nonfinite
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
+        };
+        // The atmosphere attenuates what the surface left, before the hider composites.
+        let relight = GridRelight {
+            builtin: &lights,
+            sl: &self.sl,
+            indices: &attrs.lights,
+            env: &env,
+            messages: &to_lights,
+        };
+        nonfinite += self.volumes.volume_along(
+            attrs,
+            VolumeSlot::Atmosphere,
+            &mut g,
+            &env,
+            &view,
+            Some(&relight),
+        );
+        // Records after the atmosphere: `Ci` is what the hider composites (the components
+        // are the surface's own, before any atmosphere).
+        let aov = if self.aov.stride == 0 {
+            Vec::new()
+        } else {
+            let wants_components = self
+                .aov
+                .channels
+                .iter()
+                .any(|c| illume_shade::COMPONENT_NAMES.contains(&c.name.as_str()));
+            let components = (wants_components && sl_surface.is_none())
+                .then(|| illume_shade::surface_components(&surface, &g, &cache, &env))
+                .flatten();
+            crate::aov::records(&self.aov, &g, components.as_ref(), &sl_wanted)
         };
         if nonfinite > 0 {
             self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
@@ -430,6 +501,7 @@ impl<'a> FrameShading<'a> {
             p: g.p,
             ci: g.ci,
             oi: g.oi,
+            aov,
         }
     }
 }
@@ -438,5 +510,14 @@ impl<'a> FrameShading<'a> {
 impl GridShader for FrameShading<'_> {
     fn shade_grid(&self, grid: &Grid, attrs: &Attributes, flip: f32, prim: usize) -> Shaded {
         FrameShading::shade_grid(self, grid, attrs, flip, prim)
+    }
+
+    fn image(&self, block: &mut PixelBlock) {
+        if let Some(imager) = &self.imager {
+            let nonfinite = imager.run(block, &self.frame_env());
+            if nonfinite > 0 {
+                self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
+            }
+        }
     }
 }

@@ -1,6 +1,7 @@
 //! The bucket stage: the crop window cut into buckets, each listing the pieces that reach it,
 //! and one bucket rendered from its list. A piece's grid is shared by every bucket it reaches
 //! and freed when the last one is done.
+use crate::aov::AovLayout;
 use crate::csg::{SolidResolver, NO_SOLID};
 use crate::dice::{dice_and_shade, ShadedGrid};
 use crate::displacement_bound::Overflow;
@@ -141,6 +142,7 @@ pub(crate) fn render_bucket(
     setup: &SampleSetup,
     lens: Option<&Lens>,
     counters: &Counters,
+    aov: &AovLayout,
 ) -> PixelBlock {
     let mut buf = SampleBuffer::new(rect, film.filter.radius(), setup);
     let t_sample = Instant::now();
@@ -169,14 +171,26 @@ pub(crate) fn render_bucket(
     }
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();
-    let solids = SolidResolver::new(&frame.solids);
+    let solids = SolidResolver::new(&frame.solids, &setup.eye_in_solids);
     let solid_of = |order: u64| {
         let prim = pieces[(order >> 32) as usize].prim_index;
         let solid = frame.primitives.get(prim).and_then(|fp| fp.solid);
         solid.unwrap_or(NO_SOLID)
     };
-    let composited = composite(&mut buf.lists, &buf.opaque_z, solids.as_ref(), solid_of);
-    let block = film.develop(rect, &buf.region(), &composited);
+    let aov_in = (aov.stride > 0).then_some((aov, &buf.aov_store[..]));
+    counters
+        .aov_peak_bytes
+        .fetch_max((buf.aov_store.len() * 4) as u64, Relaxed);
+    let (composited, aov_samples) = composite(
+        &mut buf.lists,
+        &buf.opaque_z,
+        solids.as_ref(),
+        solid_of,
+        aov_in,
+    );
+    let mut block = film.develop(rect, &buf.region(), &composited, (&aov_samples, aov.stride));
+    // The imager (RI Spec 3.2 `RiImager`) sees filtered pixels before exposure (`Film::print`).
+    shader.image(&mut block);
     counters.filter_ns.fetch_add(ns(t), Relaxed);
     block
 }

@@ -7,8 +7,8 @@
 //! the sample ray is inside the composite solid (the tree's root), because that is where the
 //! composite's surface is. Points of primitives outside any solid pass through untouched.
 //!
-//! Assumption: the eye starts outside every solid. A camera inside a solid sees it as if it
-//! were outside it (the first exiting hit of a solid it never entered is dropped).
+//! Every sample starts in the state of the eye: inside the primitive solids that contain it
+//! (see [`crate::csg_eye`]), outside the others.
 //!
 //! Hits *set* the state rather than count it: a grid border reaches a little outward so that
 //! neighbouring grids overlap (see the hider's `seam_reach`), and a sample in that overlap sees
@@ -23,16 +23,23 @@ pub(crate) struct SolidResolver<'a> {
     tree: &'a SolidTree,
     /// The root of each node, so an event only re-evaluates its own tree.
     roots: Vec<u32>,
+    /// The primitive solids the eye is inside: every sample ray starts inside them.
+    eye_inside: Vec<u32>,
 }
 
 impl<'a> SolidResolver<'a> {
     /// `None` when the frame has no solids: the hider then skips resolution entirely.
-    pub fn new(tree: &'a SolidTree) -> Option<SolidResolver<'a>> {
+    /// `eye_inside`: the primitive solids that contain the eye.
+    pub fn new(tree: &'a SolidTree, eye_inside: &[u32]) -> Option<SolidResolver<'a>> {
         if tree.is_empty() {
             return None;
         }
         let roots = (0..tree.nodes.len() as u32).map(|n| tree.root(n)).collect();
-        Some(SolidResolver { tree, roots })
+        Some(SolidResolver {
+            tree,
+            roots,
+            eye_inside: eye_inside.to_vec(),
+        })
     }
 
     /// Removes from a depth-sorted list the solid hits that are not on the composite surface.
@@ -48,7 +55,7 @@ impl<'a> SolidResolver<'a> {
             Vec::new()
         };
         // The primitive solids this sample is inside (a list: a sample meets few solids).
-        let mut inside: Vec<u32> = Vec::new();
+        let mut inside: Vec<u32> = self.eye_inside.clone();
         let mut index = 0;
         list.retain(|p| {
             let (leaf, entering) = event(p);
@@ -122,7 +129,7 @@ mod tests {
         let d = t.add(SolidOp::Difference, None);
         let a = t.add(SolidOp::Primitive, Some(d));
         let b = t.add(SolidOp::Primitive, Some(d));
-        let r = SolidResolver::new(&t).unwrap();
+        let r = SolidResolver::new(&t, &[]).unwrap();
         // (depth, solid, entering)
         let mut l = vec![
             (0.0, a, true),
@@ -147,7 +154,7 @@ mod tests {
         let b = t.add(SolidOp::Primitive, Some(d));
         let u = t.add(SolidOp::Union, None);
         let c = t.add(SolidOp::Primitive, Some(u));
-        let r = SolidResolver::new(&t).unwrap();
+        let r = SolidResolver::new(&t, &[]).unwrap();
         let mut l = vec![
             (0.0, b, true),
             (0.5, c, true),
@@ -159,7 +166,7 @@ mod tests {
         r.resolve(&mut l, false, |p| (p.1, p.2));
         let z: Vec<f64> = l.iter().map(|p| p.0).collect();
         assert_eq!(z, [0.5, 2.0, 3.0, 4.0]);
-        assert!(SolidResolver::new(&SolidTree::default()).is_none());
+        assert!(SolidResolver::new(&SolidTree::default(), &[]).is_none());
     }
 
     /// A − B where the ray grazes B's front at its silhouette and never hits B's back: with
@@ -171,7 +178,7 @@ mod tests {
         let d = t.add(SolidOp::Difference, None);
         let a = t.add(SolidOp::Primitive, Some(d));
         let b = t.add(SolidOp::Primitive, Some(d));
-        let r = SolidResolver::new(&t).unwrap();
+        let r = SolidResolver::new(&t, &[]).unwrap();
         let graze = vec![(0.0, b, true), (1.0, a, true), (2.0, a, false)];
         let mut l = graze.clone();
         r.resolve(&mut l, true, |p| (p.1, p.2));
@@ -191,5 +198,29 @@ mod tests {
         r.resolve(&mut l, true, |p| (p.1, p.2));
         let z: Vec<f64> = l.iter().map(|p| p.0).collect();
         assert_eq!(z, [1.0, 2.0]);
+    }
+
+    /// The eye inside A ∩ B (a camera in a room): the first hits are exits, and the nearer
+    /// one is where the ray leaves the intersection; from outside both, nothing is kept
+    /// before the entries.
+    #[test]
+    fn an_eye_inside_the_solid_sees_its_first_exit() {
+        let mut t = SolidTree::default();
+        let i = t.add(SolidOp::Intersection, None);
+        let a = t.add(SolidOp::Primitive, Some(i));
+        let b = t.add(SolidOp::Primitive, Some(i));
+        let hits = vec![(1.0, b, false), (2.0, a, false)];
+        let mut l = hits.clone();
+        SolidResolver::new(&t, &[a, b])
+            .unwrap()
+            .resolve(&mut l, true, |p| (p.1, p.2));
+        let z: Vec<f64> = l.iter().map(|p| p.0).collect();
+        assert_eq!(z, [1.0]);
+        // Assumed outside (the old behaviour): exits of solids never entered are dropped.
+        let mut l = hits;
+        SolidResolver::new(&t, &[])
+            .unwrap()
+            .resolve(&mut l, true, |p| (p.1, p.2));
+        assert!(l.is_empty());
     }
 }

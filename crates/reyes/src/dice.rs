@@ -22,6 +22,8 @@ pub(crate) struct ShadedGrid {
     pub(crate) pos: Vec<Vec3>,
     ci: Vec<Vec3>,
     oi: Vec<Vec3>,
+    /// Per-vertex AOV records ([`crate::AovLayout::stride`] floats each; empty without AOVs).
+    pub(crate) aov: Vec<f32>,
     /// Per micropolygon: culled as a back face (Sides 1).
     pub(crate) backface: Vec<bool>,
     /// The primitive solid this grid bounds ([`NO_SOLID`] for none).
@@ -72,6 +74,24 @@ impl ShadedGrid {
         } else {
             (self.ci[first], self.oi[first])
         }
+    }
+
+    /// Appends the AOV record at the hit to `store` (as [`ShadedGrid::shaded_at`] weighs
+    /// colour); `false` (nothing appended) when the grid has no records of that size.
+    pub(crate) fn push_aov(
+        &self,
+        store: &mut Vec<f32>,
+        stride: usize,
+        idx: [usize; 3],
+        w: [f64; 3],
+        first: usize,
+    ) -> bool {
+        if stride == 0 || self.aov.len() != self.ci.len() * stride {
+            return false;
+        }
+        let smooth = self.smooth.then(|| (idx, w.map(|x| x as f32)));
+        crate::aov::push_record(store, &self.aov, stride, smooth, first);
+        true
     }
 }
 
@@ -148,8 +168,11 @@ pub(crate) fn dice_and_shade(
     }
     let t = Instant::now();
     let a = &piece.attrs;
-    // Camera space is left-handed, so dPdu×dPdv is the left-handed normal: flip for "rh".
-    let flip = if a.orientation_rh { -1.0 } else { 1.0 };
+    // The orientation resolved against the primitive's handedness (see `normal_sign`).
+    let flip = frame
+        .primitives
+        .get(piece.prim_index)
+        .map_or(1.0, |fp| fp.normal_sign());
     let shaded = shader.shade_grid(&grid, a, flip, piece.prim_index);
     counters.shade_ns.fetch_add(ns(t), Relaxed);
     let cam = &frame.camera;
@@ -217,6 +240,7 @@ pub(crate) fn dice_and_shade(
         pos,
         ci: shaded.ci,
         oi: shaded.oi,
+        aov: shaded.aov,
         backface,
         solid,
         ccw_enters: flip > 0.0,

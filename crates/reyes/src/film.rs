@@ -41,6 +41,8 @@ pub struct PixelBlock {
     pub rgba: Vec<[f32; 4]>,
     /// Camera-space depth per pixel after the depth filter (`f32::MAX` where nothing was hit).
     pub z: Vec<f32>,
+    /// Filtered AOV records per pixel (`stride` floats each; empty without AOVs).
+    pub aov: Vec<f32>,
 }
 
 /// The frame's film settings.
@@ -62,12 +64,14 @@ impl Film {
 
     /// Filters the samples of `region` into the pixels of `rect` (x0 x1 y0 y1): colour by the
     /// pixel filter over every sample within its reach, depth by the depth filter over the
-    /// pixel's own samples.
+    /// pixel's own samples. `aov` holds `stride` composited AOV floats per sample, filtered
+    /// with the same weights as the colour.
     pub fn develop(
         &self,
         rect: [u32; 4],
         region: &SampleRegion,
         samples: &[Composited],
+        (aov, stride): (&[f32], usize),
     ) -> PixelBlock {
         let [px0, px1, py0, py1] = rect;
         let (rx, ry) = self.filter.radius();
@@ -80,11 +84,14 @@ impl Film {
         let bh = (py1 - py0) as usize;
         let mut color = Vec::with_capacity(bw * bh);
         let mut depth = Vec::with_capacity(bw * bh);
+        let mut aov_px = vec![0.0f32; bw * bh * stride];
+        let mut aov_acc = vec![0.0f32; stride];
         for y in py0..py1 {
             for x in px0..px1 {
                 let (cxp, cyp) = (x as f32 + 0.5, y as f32 + 0.5);
                 let mut acc = [0.0f32; 4];
                 let mut wsum = 0.0f32;
+                aov_acc.fill(0.0);
                 let qx0 = ((cxp - rx).floor() as i32).max(sx0);
                 let qx1 = ((cxp + rx).floor() as i32).min(sx1 - 1);
                 let qy0 = ((cyp - ry).floor() as i32).max(sy0);
@@ -100,14 +107,21 @@ impl Film {
                                 for (a, v) in acc.iter_mut().zip(samples[s].rgba) {
                                     *a += w * v;
                                 }
+                                let rec = &aov[s * stride..(s + 1) * stride];
+                                for (a, v) in aov_acc.iter_mut().zip(rec) {
+                                    *a += w * v;
+                                }
                             }
                         }
                     }
                 }
                 if wsum != 0.0 {
                     acc = acc.map(|v| v / wsum);
+                    aov_acc.iter_mut().for_each(|v| *v /= wsum);
                 }
                 color.push(acc);
+                let k = color.len() - 1;
+                aov_px[k * stride..(k + 1) * stride].copy_from_slice(&aov_acc);
                 let base = (((y as i32 - sy0) as usize) * sw + (x as i32 - sx0) as usize) * n_per;
                 depth.push(self.depth(&samples[base..base + n_per]));
             }
@@ -116,6 +130,7 @@ impl Film {
             rect,
             rgba: color,
             z: depth,
+            aov: aov_px,
         }
     }
 
@@ -143,12 +158,19 @@ impl Film {
     }
 
     /// Pastes the blocks into the crop window `crop` (x0 x1 y0 y1 in the full frame) and
-    /// exposes the colour: premultiplied RGBA and depth, top row first.
-    pub fn print(&self, crop: [u32; 4], blocks: Vec<PixelBlock>) -> (Vec<f32>, Vec<f32>) {
+    /// exposes the colour: premultiplied RGBA, depth and the AOV records (`stride` floats per
+    /// pixel, not exposed), top row first.
+    pub fn print(
+        &self,
+        crop: [u32; 4],
+        blocks: Vec<PixelBlock>,
+        stride: usize,
+    ) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
         let [cx0, cx1, cy0, cy1] = crop;
         let (width, height) = (cx1 - cx0, cy1 - cy0);
         let mut rgba = vec![0.0f32; (width * height * 4) as usize];
         let mut z = vec![f32::MAX; (width * height) as usize];
+        let mut aov = vec![0.0f32; (width * height) as usize * stride];
         for b in blocks {
             let [bx0, bx1, by0, _] = b.rect;
             let bwid = bx1 - bx0;
@@ -157,10 +179,13 @@ impl Film {
                 let o = (y * width + x) as usize;
                 rgba[o * 4..o * 4 + 4].copy_from_slice(pc);
                 z[o] = *pz;
+                if let Some(rec) = b.aov.get(k * stride..(k + 1) * stride) {
+                    aov[o * stride..(o + 1) * stride].copy_from_slice(rec);
+                }
             }
         }
         self.expose(&mut rgba);
-        (rgba, z)
+        (rgba, z, aov)
     }
 
     /// Exposure (RI Spec 3.2 `RiExposure`): c' = (gain·c)^(1/gamma) on colour, not alpha.
@@ -205,7 +230,7 @@ mod tests {
             per_pixel: 2,
             pos: &pos,
         };
-        film.develop([0, 2, 0, 2], &region, &samples)
+        film.develop([0, 2, 0, 2], &region, &samples, (&[], 0))
     }
 
     #[test]
@@ -250,8 +275,9 @@ mod tests {
             rect: [0, 1, 0, 1],
             rgba: vec![[0.125, 0.5, 0.0, 0.5]],
             z: vec![3.0],
+            aov: Vec::new(),
         };
-        let (rgba, z) = film.print([0, 1, 0, 1], vec![block]);
+        let (rgba, z, _) = film.print([0, 1, 0, 1], vec![block], 0);
         for (a, b) in rgba.iter().zip([0.5, 1.0, 0.0, 0.5]) {
             assert!((a - b).abs() < 1e-6, "{rgba:?}");
         }

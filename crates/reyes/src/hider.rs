@@ -3,6 +3,7 @@
 //! through the [`GridShader`]), sample (`sample_buffer.rs`, `motion.rs`), composite
 //! (`visible.rs`, `csg.rs`) and develop (`film.rs`), repeated for the buckets a displacement
 //! overflow reaches (`displacement_bound.rs`); then the film prints the exposed image.
+use crate::aov::AovLayout;
 use crate::bucket::{render_bucket, BucketLayout, GridSlot};
 use crate::displacement_bound::render_until_bounded;
 use crate::film::Film;
@@ -27,6 +28,8 @@ pub(crate) struct Counters {
     pub(crate) shade_ns: AtomicU64,
     pub(crate) sample_ns: AtomicU64,
     pub(crate) filter_ns: AtomicU64,
+    /// The largest AOV store a bucket held (bytes).
+    pub(crate) aov_peak_bytes: AtomicU64,
 }
 
 /// Nanoseconds since `t`.
@@ -45,6 +48,8 @@ pub struct Hider<'f> {
     margin: f32,
     culled: u64,
     split_ns: u64,
+    /// The arbitrary output variables the displays ask for ([`Hider::set_aovs`]).
+    aov: AovLayout,
     /// Problems found so far, in the order they arose. A driver appends its own (e.g. shader
     /// binding) here before [`Hider::render`], which adds the rest and hands them all back.
     pub warnings: Vec<Diagnostic>,
@@ -142,8 +147,15 @@ impl<'f> Hider<'f> {
             margin,
             culled,
             split_ns,
+            aov: AovLayout::default(),
             warnings,
         }
+    }
+
+    /// Asks the hider to carry these output variables; the [`GridShader`] must then hand back
+    /// `layout.stride` floats per vertex in [`crate::Shaded::aov`].
+    pub fn set_aovs(&mut self, layout: AovLayout) {
+        self.aov = layout;
     }
 
     /// The bucket stage: every bucket's pieces diced, shaded by `shader`, sampled, composited
@@ -162,6 +174,7 @@ impl<'f> Hider<'f> {
             margin,
             culled,
             split_ns,
+            aov,
             mut warnings,
         } = self;
         let opts = &frame.options;
@@ -177,6 +190,8 @@ impl<'f> Hider<'f> {
             shutter: opts.shutter,
             near_far: [cam.near as f32, cam.far as f32],
             perspective: cam.is_perspective(),
+            aov_stride: aov.stride,
+            eye_in_solids: crate::csg_eye::solids_containing_eye(frame),
         };
         let counters = Counters::default();
         let done = AtomicUsize::new(0);
@@ -201,6 +216,7 @@ impl<'f> Hider<'f> {
                             &setup,
                             lens.as_ref(),
                             &counters,
+                            &aov,
                         );
                         let n = done.fetch_add(1, Relaxed) + 1;
                         if let Some(p) = progress {
@@ -212,7 +228,7 @@ impl<'f> Hider<'f> {
             },
         );
         warnings.extend(overflow_warnings);
-        let (rgba, z) = film.print(cam.crop, blocks);
+        let (rgba, z, aov_pixels) = film.print(cam.crop, blocks, aov.stride);
         let stats = Stats {
             primitives: frame.primitives.len() as u64,
             pieces: pieces.len() as u64,
@@ -228,6 +244,9 @@ impl<'f> Hider<'f> {
             filter_seconds: counters.filter_ns.load(Relaxed) as f64 * 1e-9,
             // The hider does not see shaded values: the driver counts them.
             nonfinite: 0,
+            aov_stride: aov.stride as u64,
+            aov_bucket_peak_bytes: counters.aov_peak_bytes.load(Relaxed),
+            aov_image_bytes: (aov_pixels.len() * 4) as u64,
         };
         let [cx0, cx1, cy0, cy1] = cam.crop;
         Rendered {
@@ -237,6 +256,8 @@ impl<'f> Hider<'f> {
             height: cy1 - cy0,
             rgba,
             z,
+            aov_layout: aov,
+            aov: aov_pixels,
             stats,
             warnings,
         }

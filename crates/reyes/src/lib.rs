@@ -7,8 +7,10 @@
 //! writing and the frame loop live in the driver (`illume-render`).
 #![forbid(unsafe_code)]
 
+mod aov;
 mod bucket;
 mod csg;
+mod csg_eye;
 mod dice;
 mod displacement_bound;
 mod film;
@@ -22,6 +24,7 @@ pub mod sampling;
 mod shader;
 mod visible;
 
+pub use aov::{AovChannel, AovLayout};
 pub use film::PixelBlock;
 pub use filter::PixelFilter;
 pub use hider::Hider;
@@ -47,6 +50,11 @@ pub struct Stats {
     /// Shaded points whose colour came out NaN/Inf and was clamped (reported by `--stats`;
     /// counted by the shader, so the driver fills it in).
     pub nonfinite: u64,
+    /// Arbitrary output variables: floats per visible point, the largest AOV store one
+    /// bucket held (bytes), and the bytes of the finished AOV images.
+    pub aov_stride: u64,
+    pub aov_bucket_peak_bytes: u64,
+    pub aov_image_bytes: u64,
 }
 
 /// The filtered, exposed float image of the crop window, plus per-pixel depth.
@@ -61,6 +69,10 @@ pub struct Rendered {
     pub rgba: Vec<f32>,
     /// Camera-space depth per pixel after `depthfilter`; `f32::MAX` where nothing was hit.
     pub z: Vec<f32>,
+    /// The arbitrary output variables, filtered like the colour (not exposed): `aov.stride`
+    /// floats per pixel, top row first, laid out as `aov.channels` say.
+    pub aov_layout: AovLayout,
+    pub aov: Vec<f32>,
     pub stats: Stats,
     pub warnings: Vec<Diagnostic>,
 }

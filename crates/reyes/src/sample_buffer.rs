@@ -10,7 +10,7 @@ use crate::csg::NO_SOLID;
 use crate::dice::ShadedGrid;
 use crate::film::SampleRegion;
 use crate::sampling::{sample_position, sample_time_lens};
-use crate::visible::VisiblePoint;
+use crate::visible::{VisiblePoint, NO_AOV};
 use glam::DVec3;
 
 /// How a bucket's samples are placed.
@@ -25,6 +25,11 @@ pub(crate) struct SampleSetup {
     /// Camera clipping planes.
     pub near_far: [f32; 2],
     pub perspective: bool,
+    /// Floats per visible point's AOV record (0: no AOVs).
+    pub aov_stride: usize,
+    /// The primitive solids that contain the eye (see `csg_eye`): where each sample's CSG
+    /// state starts.
+    pub eye_in_solids: Vec<u32>,
 }
 
 pub(crate) struct SampleBuffer {
@@ -43,6 +48,9 @@ pub(crate) struct SampleBuffer {
     pub near_far: [f32; 2],
     pub shutter: [f32; 2],
     perspective: bool,
+    /// AOV records of the visible points (`aov_stride` floats each), indexed by their tag.
+    pub aov_store: Vec<f32>,
+    pub aov_stride: usize,
 }
 
 /// One sample hit of a micropolygon, ready to become a [`VisiblePoint`].
@@ -101,6 +109,8 @@ impl SampleBuffer {
             near_far: set.near_far,
             shutter: set.shutter,
             perspective: set.perspective,
+            aov_store: Vec::new(),
+            aov_stride: set.aov_stride,
         }
     }
 
@@ -214,13 +224,20 @@ impl SampleBuffer {
     /// vertex when shading is flat).
     pub fn deposit(&mut self, g: &ShadedGrid, s: usize, hit: Hit) {
         let (c, o) = g.shaded_at(hit.idx, hit.w, hit.first);
+        let stride = self.aov_stride;
+        let mut aov = NO_AOV;
+        if let Some(k) = self.aov_store.len().checked_div(stride) {
+            let k = k.min(NO_AOV as usize) as u32;
+            if k < NO_AOV && g.push_aov(&mut self.aov_store, stride, hit.idx, hit.w, hit.first) {
+                aov = k;
+            }
+        }
         self.lists[s].push(VisiblePoint {
             z: hit.z,
             order: hit.order,
             c,
             o,
-            matte: g.matte,
-            entering: hit.ccw == g.ccw_enters,
+            tag: VisiblePoint::tag(g.matte, hit.ccw == g.ccw_enters, aov),
         });
         // A solid's surface may yet be carved away, so it hides nothing behind it.
         if o.min_element() >= 1.0 && g.solid == NO_SOLID {

@@ -20,6 +20,24 @@ pub struct FramePrimitive {
     pub solid: Option<u32>,
     /// Its later positions when it moves (a motion block, a moving transform or camera).
     pub motion: Option<crate::motion::MotionKeys>,
+    /// Whether its object-to-camera transformation mirrors (negative determinant, at the
+    /// first motion key): its object space then has the other handedness than camera space.
+    pub mirrored: bool,
+}
+
+impl FramePrimitive {
+    /// The sign that turns the camera-space `dPdu × dPdv` into the surface's geometric normal
+    /// `Ng` (and the default `N`): camera space is left-handed, so the raw cross product is the
+    /// left-handed normal; it is flipped when the orientation is "inside" relative to the
+    /// object's own handedness, or "outside" in a mirrored (right-handed) object space. A
+    /// user-supplied `N` is never flipped (see [`illume_geom::Grid::user_normals`]).
+    pub fn normal_sign(&self) -> f32 {
+        if self.attributes.orientation_inside != self.mirrored {
+            -1.0
+        } else {
+            1.0
+        }
+    }
 }
 
 /// A complete frame: camera, options, lights, and every primitive of the world block.

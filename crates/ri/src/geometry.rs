@@ -64,12 +64,14 @@ impl Ri {
         let lookup = |n: &str| decls.get(n);
         let a = &self.attributes;
         let mut blobby_warnings = Vec::new();
+        let repaired = std::cell::RefCell::new(Vec::new());
         let ctx = BuildContext {
             camera_from_object,
             declarations: &lookup,
             basis: a.basis,
             texture_coordinates: a.texture_coordinates,
             trim_curves: a.trim_curves.clone(),
+            warnings: Some(&repaired),
         };
         let built = match req {
             Request::Blobby {
@@ -101,7 +103,7 @@ impl Ri {
             }
             _ => illume_geom::build(req, &ctx),
         };
-        for w in blobby_warnings {
+        for w in repaired.into_inner().into_iter().chain(blobby_warnings) {
             self.diagnostics.warn(span, req.name(), w);
         }
         match built {
@@ -144,6 +146,7 @@ impl Ri {
         }
         let mut later: Vec<_> = later.into_iter().map(Vec::into_iter).collect();
         let solid = self.solid_leaf();
+        let mirrored = self.current_is_rh();
         for p in first {
             let motion = (!later.is_empty()).then(|| MotionKeys {
                 times: times.iter().map(|&t| t as f32).collect(),
@@ -158,6 +161,7 @@ impl Ri {
                 span: span.clone(),
                 solid,
                 motion,
+                mirrored,
             });
         }
     }

@@ -288,7 +288,19 @@ impl Ri {
             } => self.procedural(&kind, &args, &bound, &span),
             ref r if r.is_option() => {
                 let projection = matches!(r, Projection { .. });
+                let display = matches!(r, Display { .. });
                 self.options.apply(value, &span, &mut self.diagnostics);
+                if display {
+                    // AOV names take the types `Declare` gave them by the time of the Display.
+                    if let Some(d) = self.options.displays.last_mut() {
+                        d.declared = d
+                            .mode
+                            .split(',')
+                            .map(str::trim)
+                            .filter_map(|n| Some((n.to_string(), self.declarations.get(n)?)))
+                            .collect();
+                    }
+                }
                 if projection {
                     // RiProjection leaves the current transformation at identity.
                     self.ctm = DMat4::IDENTITY;

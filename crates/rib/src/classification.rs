@@ -27,6 +27,7 @@ impl Request {
                 | Quantize { .. }
                 | Display { .. }
                 | Hider { .. }
+                | DisplayChannel { .. }
                 | ColorSamples { .. }
                 | RelativeDetail(_)
                 | Option { .. }

@@ -195,6 +195,12 @@ pub enum Request {
         name: String,
         params: ParamList,
     },
+    /// PRMan's `DisplayChannel "color __diffuse" "filter" "box" …`: declares an output channel
+    /// (type and name in `name`) that displays may name in their mode.
+    DisplayChannel {
+        name: String,
+        params: ParamList,
+    },
     ColorSamples {
         n_rgb: Vec<f32>,
         rgb_n: Vec<f32>,
@@ -522,6 +528,7 @@ impl Request {
             Quantize { .. } => "Quantize",
             Display { .. } => "Display",
             Hider { .. } => "Hider",
+            DisplayChannel { .. } => "DisplayChannel",
             ColorSamples { .. } => "ColorSamples",
             RelativeDetail(_) => "RelativeDetail",
             Option { .. } => "Option",

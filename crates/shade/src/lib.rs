@@ -34,6 +34,7 @@ mod error;
 mod geometric;
 mod hash;
 mod illuminance;
+mod imager;
 mod light;
 mod lighting;
 mod lights;
@@ -47,6 +48,7 @@ mod shadingenv;
 mod shadinggrid;
 mod surface;
 mod texturelookup;
+mod volume;
 
 pub use areaemitter::AreaEmitter;
 pub use displacement::{displace, displacement, Displacement};
@@ -54,12 +56,14 @@ pub use error::ShadeError;
 pub use geometric::{faceforward, fresnel, normalize_or_zero, reflect, refract, Fresnel};
 pub use hash::lowbias32;
 pub use illuminance::{category_matches, Illuminance};
+pub use imager::{imager, Imager};
 pub use light::{light, AreaSample, Light, LightCache, LightSamples};
 pub use lighting::{
     blinn_phong, diffuse_term, glossy_term, oren_nayar_term, phong_term, specularbrdf,
     ward_anisotropic_term,
 };
 pub use materials::environment::{raysphere, RaySphere};
+pub use materials::{surface_components, Components, COMPONENT_NAMES};
 pub use mathfunctions::{mix, smoothstep};
 pub use noise::noise;
 pub use occlusion::Occlusion;
@@ -69,3 +73,4 @@ pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
+pub use volume::{run_volume, volume, Volume};

@@ -100,6 +100,9 @@ pub struct ShadingEnv<'a> {
     pub seed: u32,
     /// The camera's `Clipping` planes (camera-space z), for `depth()`.
     pub clipping: (f32, f32),
+    /// The depth bias of SL `shadow()` calls that pass no `"bias"`: the frame's
+    /// `Option "shadow" "bias"` (PRMan's; 0.225 by default as in PRMan and Aqsis).
+    pub shadow_bias: f32,
     /// The frame's options and the primitive's attributes as `option()`/`attribute()` see
     /// them; `None`: every query answers "unknown".
     pub options: Option<&'a RenderInfo>,
@@ -125,6 +128,7 @@ impl<'a> ShadingEnv<'a> {
             ray_offset: 0.0,
             seed: 0,
             clipping: (f32::EPSILON, f32::INFINITY),
+            shadow_bias: 0.225,
             options: None,
             attributes: None,
         }

@@ -135,6 +135,15 @@ impl SlInstance {
             .collect()
     }
 
+    /// [`SlInstance::params`] for the other entry points of the crate.
+    pub(crate) fn params_for(&self, exec: &mut Exec, grid: &ShadingGrid) -> Vec<Value> {
+        self.params(exec, grid)
+    }
+
+    pub(crate) fn report_problems(exec: &Exec, env: &ShadingEnv, name: &str) {
+        Self::report(exec, env, name);
+    }
+
     fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
         for p in &exec.problems {
             env.warn(&format!("shader `{name}`: {p}"));
@@ -160,14 +169,57 @@ impl SlInstance {
         env: &ShadingEnv,
         messages: Messages,
     ) -> SlStats {
+        self.shade_surface_outputs(grid, lights, env, messages, &mut [])
+    }
+
+    /// The shader's `output` parameters of type float, colour, point, vector or normal:
+    /// (name, floats per point, whether it is a colour). What a display may name as an
+    /// arbitrary output variable.
+    pub fn output_parameters(&self) -> Vec<(String, usize, bool)> {
+        let def = self.shader.program.shader(self.shader.id);
+        def.params
+            .iter()
+            .filter(|p| p.output && !p.ty.is_array())
+            .filter_map(|p| match p.ty.base {
+                BaseType::Float => Some((p.name.clone(), 1, false)),
+                b if b.is_triple() => Some((p.name.clone(), 3, b == BaseType::Color)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// [`SlInstance::shade_surface_with`] that also hands back the values the shader left in
+    /// the output parameters named in `wanted` (`(name, values)`: the values are filled with
+    /// one float or triple per point, flattened; a name the shader lacks stays empty).
+    pub fn shade_surface_outputs(
+        &self,
+        grid: &mut ShadingGrid,
+        lights: &Lights,
+        env: &ShadingEnv,
+        messages: Messages,
+        wanted: &mut [(&str, Vec<f32>)],
+    ) -> SlStats {
         let (ci, oi) = {
             let g: &ShadingGrid = grid;
             let mut exec = Exec::new(&self.shader.program, g, env, lights);
             exec.messages = messages;
             let params = self.params(&mut exec, g);
-            exec.run_shader(self.shader.id, params);
+            let out = exec.run_shader(self.shader.id, params);
             Self::report(&exec, env, self.name());
             let n = g.len();
+            let def = self.shader.program.shader(self.shader.id);
+            for (name, values) in wanted.iter_mut() {
+                let Some(k) = def.params.iter().position(|p| p.name == *name && p.output) else {
+                    continue;
+                };
+                match out.get(k) {
+                    Some(Value::Float(s)) => values.extend(s.to_varying(n)),
+                    Some(Value::Triple(s)) => {
+                        values.extend(s.to_varying(n).into_iter().flat_map(|v| v.to_array()))
+                    }
+                    _ => {}
+                }
+            }
             (
                 exec.global(Global::Ci).clone(),
                 exec.global(Global::Oi).clone(),
@@ -294,7 +346,7 @@ impl IntoPair for (Value, Value) {
     }
 }
 
-fn triple_vec(v: &Value, n: usize) -> Vec<Vec3> {
+pub(crate) fn triple_vec(v: &Value, n: usize) -> Vec<Vec3> {
     match v {
         Value::Triple(s) => s.to_varying(n),
         Value::Float(s) => s.to_varying(n).into_iter().map(Vec3::splat).collect(),

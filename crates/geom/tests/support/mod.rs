@@ -19,6 +19,7 @@ pub fn ctx_with(m: DMat4) -> BuildContext<'static> {
         basis: (BEZIER, 3, BEZIER, 3),
         texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
         trim_curves: None,
+        warnings: None,
     }
 }
 

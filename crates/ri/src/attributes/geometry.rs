@@ -20,11 +20,13 @@ impl Ri {
                 }
             }
             Orientation(o) => {
-                let rh = match o.as_str() {
-                    "lh" => false,
-                    "rh" => true,
-                    "outside" => self.current_is_rh(),
-                    "inside" => !self.current_is_rh(),
+                // Camera space is left-handed: "lh" is "outside" exactly when the current
+                // coordinate system is left-handed too.
+                let inside = match o.as_str() {
+                    "lh" => self.current_is_rh(),
+                    "rh" => !self.current_is_rh(),
+                    "outside" => false,
+                    "inside" => true,
                     other => {
                         self.diagnostics.error(
                             span,
@@ -34,11 +36,11 @@ impl Ri {
                         return;
                     }
                 };
-                self.attrs().orientation_rh = rh;
+                self.attrs().orientation_inside = inside;
             }
             ReverseOrientation => {
                 let a = self.attrs();
-                a.orientation_rh = !a.orientation_rh;
+                a.orientation_inside = !a.orientation_inside;
             }
             TrimCurve {
                 ncurves,

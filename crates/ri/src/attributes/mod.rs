@@ -41,11 +41,13 @@ pub struct Attributes {
     pub smooth_shading: bool,
     pub matte: bool,
     pub sides: i32,
-    /// The current orientation as an absolute handedness (RI Spec 3.2 `RiOrientation`:
-    /// "outside"/"inside" resolve against the current coordinate system when given). Camera
-    /// space is left-handed, so the camera-space normal `dPdu × dPdv` is the left-handed one
-    /// and the final normal is flipped exactly when this is `true`.
-    pub orientation_rh: bool,
+    /// The current orientation relative to the handedness of the current coordinate system
+    /// (RI Spec 3.2 `RiOrientation`: "outside" is `false`, "inside" `true`; "lh"/"rh" are
+    /// turned into one of them against the handedness when they are called). It is resolved
+    /// per primitive against the sign of its object-to-camera determinant (see
+    /// [`crate::FramePrimitive::normal_sign`]), so a mirroring transform or camera given
+    /// after it keeps an "outside" surface's normals pointing out, as PRMan and Aqsis do.
+    pub orientation_inside: bool,
     pub texture_coordinates: [f32; 8],
     /// (u basis, u step, v basis, v step), matrices in RIB row order.
     pub basis: ([f32; 16], i32, [f32; 16], i32),
@@ -92,7 +94,7 @@ impl Default for Attributes {
             smooth_shading: false,
             matte: false,
             sides: 2,
-            orientation_rh: false,
+            orientation_inside: false,
             texture_coordinates: [0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
             basis: (bezier, 3, bezier, 3),
             surface: None,

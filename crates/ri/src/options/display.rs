@@ -95,12 +95,30 @@ impl Options {
                     kind,
                     mode,
                     params,
+                    declared: Vec::new(),
                 };
                 if !file.starts_with('+') {
                     o.displays.clear();
                 }
                 o.displays.push(spec);
             }
+            DisplayChannel { name: decl, params } => match illume_rib::Declaration::parse(&decl) {
+                Ok(d) if d.name.is_some() && d.ty != illume_rib::Type::String => {
+                    let channel = crate::options::DisplayChannel {
+                        name: d.name.clone().unwrap_or_default(),
+                        declaration: d,
+                        params,
+                    };
+                    o.display_channels.retain(|c| c.name != channel.name);
+                    o.display_channels.push(channel);
+                }
+                Ok(_) => diagnostics.error(
+                    span,
+                    &name,
+                    format!("expected \"type name\" (e.g. \"color __diffuse\"), found \"{decl}\""),
+                ),
+                Err(e) => diagnostics.error(span, &name, format!("\"{decl}\": {e}")),
+            },
             _ => {}
         }
     }

@@ -1,5 +1,6 @@
 //! Frame options with the defaults of RI Spec 3.2 Table 4.1 (and the PRMan `Option`s that real
 //! scenes rely on: limits, searchpath, shadow).
+use crate::attributes::Shader;
 use crate::diagnostic::Diagnostics;
 use illume_rib::{ParamList, Request, Span};
 
@@ -27,13 +28,26 @@ pub enum DepthFilter {
     Midpoint,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct DisplaySpec {
     pub name: String,
     /// `tiff`, `file`, `png`, `openexr`, `zfile`, `framebuffer`, …
     pub kind: String,
-    /// `rgb`, `rgba`, `a`, `z`, `rgbz`, …
+    /// `rgb`, `rgba`, `a`, `z`, `rgbz`, …, or comma-separated variables
+    /// (`"rgba,__diffuse,N"`, `"varying color __spec"`): see the driver's `aov.rs`.
     pub mode: String,
+    pub params: ParamList,
+    /// The `Declare`d types of the mode's variable names at the time of the `Display` (inline
+    /// declarations and built-in globals are resolved by the driver).
+    pub declared: Vec<(String, illume_rib::Declaration)>,
+}
+
+/// A `DisplayChannel` (PRMan): an output variable declared once, with the display parameters
+/// (`"filter"`, `"filterwidth"`, `"quantize"`, `"dither"`) every display naming it inherits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DisplayChannel {
+    pub name: String,
+    pub declaration: illume_rib::Declaration,
     pub params: ParamList,
 }
 
@@ -69,6 +83,8 @@ pub struct Options {
     pub quantize_rgba: QuantizeSpec,
     pub quantize_z: QuantizeSpec,
     pub displays: Vec<DisplaySpec>,
+    /// `DisplayChannel`s declared so far (a later declaration of a name replaces it).
+    pub display_channels: Vec<DisplayChannel>,
     pub jitter: bool,
     pub depth_filter: DepthFilter,
     pub bucket_size: [u32; 2],
@@ -88,6 +104,10 @@ pub struct Options {
     pub shutter: [f32; 2],
     /// `DepthOfField` fstop, focallength, focaldistance; `None` is a pinhole camera.
     pub depth_of_field: Option<[f32; 3]>,
+    /// `Imager name params` (RI Spec 3.2 §4.1.4): run on every pixel after the pixel filter,
+    /// before exposure and quantization. `None` (the default, or `Imager "null"`) runs none.
+    /// Imagers work in raster space, so `camera_from_shader` is the identity.
+    pub imager: Option<Shader>,
 }
 
 impl Default for Options {
@@ -119,6 +139,7 @@ impl Default for Options {
                 dither: 0.0,
             },
             displays: Vec::new(),
+            display_channels: Vec::new(),
             jitter: true,
             depth_filter: DepthFilter::Min,
             bucket_size: [16, 16],
@@ -133,6 +154,7 @@ impl Default for Options {
             specular_model: "prman".into(),
             shutter: [0.0, 0.0],
             depth_of_field: None,
+            imager: None,
         }
     }
 }
@@ -181,7 +203,15 @@ impl Options {
             Projection { .. } | Clipping { .. } | Shutter { .. } | DepthOfField { .. } => {
                 self.camera_option(req, span, diagnostics)
             }
-            ClippingPlane { .. } | Imager { .. } | RelativeDetail(_) => {
+            Imager { name: n, params } => {
+                self.imager = (n != "null" && !n.is_empty()).then(|| Shader {
+                    name: n,
+                    params,
+                    camera_from_shader: glam::DMat4::IDENTITY,
+                    span: span.clone(),
+                });
+            }
+            ClippingPlane { .. } | RelativeDetail(_) => {
                 diagnostics.warn(span, &name, "not supported yet (ignored)");
             }
             ColorSamples { n_rgb, .. } if n_rgb.len() != 9 => {
@@ -196,7 +226,8 @@ impl Options {
             | PixelFilter { .. }
             | Exposure { .. }
             | Quantize { .. }
-            | Display { .. } => self.display_option(req, span, diagnostics),
+            | Display { .. }
+            | DisplayChannel { .. } => self.display_option(req, span, diagnostics),
             Hider { name: h, params } => self.hider(&name, &h, &params, span, diagnostics),
             Option { name: n, params } => self.user_option(&n, &params, span, diagnostics),
             _ => {}

@@ -165,6 +165,7 @@ fn options(name: &str, a: &mut Args) -> Res<Option<Request>> {
             params: a.params()?,
         },
         "Hider" => named!(a, Hider),
+        "DisplayChannel" => named!(a, DisplayChannel),
         "ColorSamples" => R::ColorSamples {
             n_rgb: a.float_array()?,
             rgb_n: a.float_array()?,

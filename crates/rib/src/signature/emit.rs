@@ -48,6 +48,7 @@ pub(crate) fn emit<S: Sink>(req: &Request, s: &mut S) -> io::Result<()> {
         | R::Projection { name, params }
         | R::Imager { name, params }
         | R::Hider { name, params }
+        | R::DisplayChannel { name, params }
         | R::Option { name, params }
         | R::Attribute { name, params }
         | R::Surface { name, params }

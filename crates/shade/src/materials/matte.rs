@@ -5,7 +5,7 @@
 //! |---|---|---|
 //! | Ka | float | 1 |
 //! | Kd | float | 1 |
-use super::{f, SurfaceContext};
+use super::{f, Components, SurfaceContext};
 use crate::parameters::ParamValue;
 use glam::Vec3;
 
@@ -22,6 +22,18 @@ pub(crate) fn material_matte(
     kd: f32,
 ) -> Vec3 {
     basecolor * (ka * ctx.lights.ambient(i) + kd * ctx.lights.diffuse(i, ctx.nf[i]))
+}
+
+/// `Cs·Ka·ambient` and `Cs·Kd·diffuse` apart.
+pub(super) fn components(ctx: &SurfaceContext) -> Components {
+    let g = ctx.grid;
+    let (ka, kd) = (ctx.params.float_on(g, "Ka"), ctx.params.float_on(g, "Kd"));
+    let mut out = Components::new(g.len());
+    for i in 0..g.len() {
+        out.ambient[i] = g.cs[i] * (ka.at(i) * ctx.lights.ambient(i));
+        out.diffuse[i] = g.cs[i] * (kd.at(i) * ctx.lights.diffuse(i, ctx.nf[i]));
+    }
+    out
 }
 
 pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {

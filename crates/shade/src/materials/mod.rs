@@ -3,6 +3,9 @@
 //! (`surface.rs` then applies `Oi = Os; Ci *= Oi` as every listing ends).
 pub mod environment;
 
+mod components;
+pub use components::{surface_components, Components, COMPONENT_NAMES};
+
 mod constant;
 mod defaultsurface;
 mod glossy;

@@ -16,7 +16,7 @@
 //! | envspace | string | "world" |
 //! | envrad | float | 100 |
 use super::environment::{sample_environment, EnvParams};
-use super::{envparams, f, SurfaceContext};
+use super::{envparams, f, Components, SurfaceContext};
 use crate::geometric::fresnel;
 use crate::parameters::ParamValue;
 use glam::Vec3;
@@ -35,15 +35,13 @@ pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     p
 }
 
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+/// The Fresnel reflectance per point and the reflection term `SampleEnvironment(P, R,
+/// Kr·Kr_fresnel, blur, ENVPARAMS)`.
+fn fresnel_and_environment(ctx: &SurfaceContext) -> (Vec<f32>, Vec<Vec3>) {
     let g = ctx.grid;
     let p = ctx.params;
     let n = g.len();
-    let (ka, kd, ks, r, kr, blur, ior) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
+    let (kr, blur, ior) = (
         p.float_on(g, "Kr"),
         p.float_on(g, "blur"),
         p.float_on(g, "ior"),
@@ -60,11 +58,50 @@ pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
         envrad: p.float("envrad"),
     };
     let env_term = sample_environment(ctx.env, g, &refl, &kr_v, &blur_v, params);
+    (fr.iter().map(|f| f.kr).collect(), env_term)
+}
+
+/// The terms of [`shade`] apart.
+pub(super) fn components(ctx: &SurfaceContext) -> Components {
+    let g = ctx.grid;
+    let p = ctx.params;
+    let (ka, kd, ks, r) = (
+        p.float_on(g, "Ka"),
+        p.float_on(g, "Kd"),
+        p.float_on(g, "Ks"),
+        p.float_on(g, "roughness"),
+    );
+    let (fr, env_term) = fresnel_and_environment(ctx);
+    let l = ctx.lights;
+    let mut out = Components::new(g.len());
+    for i in 0..g.len() {
+        let nf = ctx.nf[i];
+        let fkt = 1.0 - fr[i];
+        out.ambient[i] = fkt * g.cs[i] * (ka.at(i) * l.ambient(i));
+        out.diffuse[i] = fkt * g.cs[i] * (kd.at(i) * l.diffuse(i, nf));
+        out.specular[i] =
+            (ks.at(i) * fr[i]) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model);
+        out.reflection[i] = env_term[i];
+    }
+    out
+}
+
+pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+    let g = ctx.grid;
+    let p = ctx.params;
+    let n = g.len();
+    let (ka, kd, ks, r) = (
+        p.float_on(g, "Ka"),
+        p.float_on(g, "Kd"),
+        p.float_on(g, "Ks"),
+        p.float_on(g, "roughness"),
+    );
+    let (fr, env_term) = fresnel_and_environment(ctx);
     let l = ctx.lights;
     (0..n)
         .map(|i| {
             let nf = ctx.nf[i];
-            let fkr = fr[i].kr;
+            let fkr = fr[i];
             let fkt = 1.0 - fkr;
             fkt * g.cs[i] * (ka.at(i) * l.ambient(i) + kd.at(i) * l.diffuse(i, nf))
                 + (ks.at(i) * fkr) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model)

@@ -19,6 +19,8 @@ struct Options {
 impl Exec<'_> {
     fn texture_options(&mut self, call: &TextureCall, mask: &Mask) -> Options {
         let mut o = Options::default();
+        // Without a "bias" parameter, shadow() takes the frame's Option "shadow" "bias".
+        o.shadow.bias = self.env.shadow_bias;
         let (mut sw, mut tw) = (None, None);
         for p in &call.params {
             let name = match self.eval(&p.name, mask) {
@@ -78,7 +80,7 @@ impl Exec<'_> {
 
     /// Per point, the four footprint corners of a coordinate given once per point (its grid
     /// neighbours) or four times (explicit corners).
-    fn corners<T: Copy>(&self, coords: &[Slot<T>], i: usize) -> [T; 4] {
+    pub(super) fn corners<T: Copy>(&self, coords: &[Slot<T>], i: usize) -> [T; 4] {
         if coords.len() >= 4 {
             return [
                 *coords[0].at(i),
@@ -214,8 +216,7 @@ impl Exec<'_> {
                     .collect()
             }
             TextureKind::Bump => {
-                self.problem("bump() is not implemented; it returns 0".to_string());
-                return zero_of(ty);
+                return self.bump_call(tex, (&name, first), &opts.texture, &coords, mask);
             }
         };
         if missing {

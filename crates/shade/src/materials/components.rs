@@ -1,0 +1,66 @@
+//! The built-in materials' lighting components (issue 20), for the displays that name them:
+//! `__ambient`, `__diffuse`, `__specular` and `__reflection` (environment map or traced). The
+//! driver multiplies them by `Oi`, so for every material listed in [`surface_components`]
+//! they add up to `Ci` (each material's `components` mirrors its `shade` term by term; the
+//! tests in `tests/aov.rs` check the sum to 1e-5).
+use super::{SurfaceContext, SurfaceKind};
+use crate::light::LightCache;
+use crate::shadingenv::ShadingEnv;
+use crate::shadinggrid::ShadingGrid;
+use crate::surface::Surface;
+use glam::Vec3;
+
+/// The component names, in the order of [`Components::by_index`].
+pub const COMPONENT_NAMES: [&str; 4] = ["__ambient", "__diffuse", "__specular", "__reflection"];
+
+/// One grid's unpremultiplied components, one colour per point each.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Components {
+    pub ambient: Vec<Vec3>,
+    pub diffuse: Vec<Vec3>,
+    pub specular: Vec<Vec3>,
+    pub reflection: Vec<Vec3>,
+}
+
+impl Components {
+    pub(crate) fn new(n: usize) -> Components {
+        Components {
+            ambient: vec![Vec3::ZERO; n],
+            diffuse: vec![Vec3::ZERO; n],
+            specular: vec![Vec3::ZERO; n],
+            reflection: vec![Vec3::ZERO; n],
+        }
+    }
+
+    /// The component named `COMPONENT_NAMES[k]`.
+    pub fn by_index(&self, k: usize) -> Option<&[Vec3]> {
+        match k {
+            0 => Some(&self.ambient),
+            1 => Some(&self.diffuse),
+            2 => Some(&self.specular),
+            3 => Some(&self.reflection),
+            _ => None,
+        }
+    }
+}
+
+/// The components of `surface` over `grid` (lights already run into `cache`), before `Oi`;
+/// `None` for the materials that do not split their colour (`constant`, `defaultsurface`,
+/// `thinplastic`, `orennayar`, `wardanisotropic`, `glossy`): their components are black.
+pub fn surface_components(
+    surface: &Surface,
+    grid: &ShadingGrid,
+    cache: &LightCache,
+    env: &ShadingEnv,
+) -> Option<Components> {
+    let ctx = SurfaceContext::new(grid, cache, env, &surface.params);
+    Some(match surface.kind {
+        SurfaceKind::Matte => super::matte::components(&ctx),
+        SurfaceKind::Plastic | SurfaceKind::PaintedPlastic => super::plastic::components(&ctx),
+        SurfaceKind::Metal => super::metal::components(&ctx, false),
+        SurfaceKind::RoughMetal => super::metal::components(&ctx, true),
+        SurfaceKind::ShinyMetal => super::shinymetal::components(&ctx),
+        SurfaceKind::ShinyPlastic => super::shinyplastic::components(&ctx),
+        _ => return None,
+    })
+}
