@@ -75,6 +75,14 @@ fn globals_follow_the_shader_kind() {
         one("surface s() { Ci = Cl; }"),
         "e.sl:1:20: error: 'Cl' is only defined inside an illuminance loop"
     );
+    assert_eq!(
+        one("surface s() { Ci = length(Ps); }"),
+        "e.sl:1:27: warning: global 'Ps' is not defined in a surface shader: using P"
+    );
+    assert_eq!(
+        one("displacement d() { P = Ps; }"),
+        "e.sl:1:24: error: global 'Ps' is not available in a displacement shader"
+    );
 }
 
 #[test]

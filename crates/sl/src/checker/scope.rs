@@ -3,6 +3,7 @@
 
 use super::{unknown, Checker};
 use crate::ast::*;
+use crate::diagnostic::Diagnostic;
 use crate::span::Span;
 use crate::types::{Detail, ShaderKind, Type};
 
@@ -85,8 +86,17 @@ impl Checker<'_> {
         if let Some(r) = frame.scopes.iter().rev().find_map(|s| s.get(name).copied()) {
             return Some(r);
         }
-        if let Some(g) = Global::from_name(name) {
+        if let Some(mut g) = Global::from_name(name) {
             if let Some(kind) = frame.shader_kind {
+                // `Ps` in a surface shader: peers (Aqsis, PRMan) accept it as the surface point,
+                // and library shaders written for them use it; a warning, and it reads `P`.
+                if g == Global::Ps && kind == ShaderKind::Surface {
+                    self.diags.push(Diagnostic::warning(
+                        span,
+                        format!("global 'Ps' is not defined in a {kind} shader: using P"),
+                    ));
+                    g = Global::P;
+                }
                 if g.access(kind) == Access::None {
                     self.error(
                         span,
