@@ -155,7 +155,9 @@ fn tools() -> Option<Tools> {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_binding").join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("c_binding")
+        .join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -178,13 +180,26 @@ fn compile(t: &Tools, dir: &Path, source: &str) -> PathBuf {
         .args(["-lillume", "-lm"])
         .output()
         .unwrap();
-    assert!(out.status.success(), "cc: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "cc: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     exe
 }
 
 fn run(exe: &Path, dir: &Path, env: &[(&str, &str)]) -> String {
-    let out = Command::new(exe).current_dir(dir).envs(env.iter().copied()).output().unwrap();
-    assert!(out.status.success(), "{} failed: {}", exe.display(), String::from_utf8_lossy(&out.stderr));
+    let out = Command::new(exe)
+        .current_dir(dir)
+        .envs(env.iter().copied())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{} failed: {}",
+        exe.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
@@ -200,8 +215,16 @@ fn every_request_writes_catribs_canonical_rib() {
     run(&exe, &dir, &[]);
     let hand: String = TABLE.iter().map(|(_, r)| format!("{r}\n")).collect();
     std::fs::write(dir.join("hand.rib"), format!("##RenderMan RIB\n{hand}")).unwrap();
-    let out = Command::new(&t.catrib).arg("hand.rib").current_dir(&dir).output().unwrap();
-    assert!(out.status.success(), "catrib: {}", String::from_utf8_lossy(&out.stderr));
+    let out = Command::new(&t.catrib)
+        .arg("hand.rib")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "catrib: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let want = String::from_utf8(out.stdout).unwrap();
     let got = std::fs::read_to_string(dir.join("c.rib")).unwrap();
     let (want, got): (Vec<&str>, Vec<&str>) = (want.lines().collect(), got.lines().collect());
@@ -258,12 +281,18 @@ fn bad_calls_reach_the_error_handler_with_ri_codes() {
     assert_eq!(codes[2], (27, 2), "{out}");
     // NULL token list: RIE_MISSINGDATA (46); an undeclared token: RIE_BADTOKEN (41); a NULL
     // value: RIE_MISSINGDATA.
-    assert!(codes.contains(&(46, 2)) && codes.contains(&(41, 2)), "{out}");
+    assert!(
+        codes.contains(&(46, 2)) && codes.contains(&(41, 2)),
+        "{out}"
+    );
     assert!(out.contains("parameter `P` has a NULL value"), "{out}");
     assert!(out.contains("nosuchtoken"), "{out}");
     // AttributeEnd without AttributeBegin is an error the renderer reports.
     assert!(out.lines().any(|l| l.contains("AttributeEnd")), "{out}");
-    assert!(out.ends_with(&format!("alive {}\n", codes.last().unwrap().0)), "{out}");
+    assert!(
+        out.ends_with(&format!("alive {}\n", codes.last().unwrap().0)),
+        "{out}"
+    );
 }
 
 #[test]
@@ -304,19 +333,33 @@ int main(void) {
 fn a_c_program_renders_the_bits_of_its_captured_rib() {
     let Some(t) = tools() else { return };
     let dir = scratch("same_bits");
-    let src = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/c/procedural.c")).unwrap();
+    let src = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/c/procedural.c"),
+    )
+    .unwrap();
     let exe = compile(&t, &dir, &src);
     run(&exe, &dir, &[]);
     let direct = std::fs::read(dir.join("procedural.tif")).unwrap();
     std::fs::remove_file(dir.join("procedural.tif")).unwrap();
     run(&exe, &dir, &[("ILLUME_RIBOUT", "captured.rib")]);
-    assert!(!dir.join("procedural.tif").exists(), "ILLUME_RIBOUT must not render");
-    let st = Command::new(&t.render).args(["-q", "captured.rib"]).current_dir(&dir).status().unwrap();
+    assert!(
+        !dir.join("procedural.tif").exists(),
+        "ILLUME_RIBOUT must not render"
+    );
+    let st = Command::new(&t.render)
+        .args(["-q", "captured.rib"])
+        .current_dir(&dir)
+        .status()
+        .unwrap();
     assert!(st.success());
     let via_rib = std::fs::read(dir.join("procedural.tif")).unwrap();
     assert!(direct == via_rib, "in-process and RIB renders differ");
     // And the image is not empty: the spheres cover part of the frame.
     let img = illume_imageio::read_image(&dir.join("procedural.tif")).unwrap();
-    let lit = img.data.chunks(img.channels.len()).filter(|p| p[0] > 0.05).count();
+    let lit = img
+        .data
+        .chunks(img.channels.len())
+        .filter(|p| p[0] > 0.05)
+        .count();
     assert!(lit > 100, "only {lit} lit pixels");
 }

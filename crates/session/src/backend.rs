@@ -1,5 +1,7 @@
 //! The two back ends a session drives: the in-process renderer and the RIB writer.
-use crate::errors::{RiError, RIE_BADFILE, RIE_ERROR, RIE_SEVERE, RIE_SYSTEM, RIE_UNIMPLEMENT, RIE_WARNING};
+use crate::errors::{
+    RiError, RIE_BADFILE, RIE_ERROR, RIE_SEVERE, RIE_SYSTEM, RIE_UNIMPLEMENT, RIE_WARNING,
+};
 use illume_ri::{Frame, Ri, Severity};
 use illume_rib::Request;
 use std::fs::File;
@@ -98,7 +100,11 @@ impl RibWriter {
     }
 
     fn io_error(&self, e: std::io::Error) -> RiError {
-        RiError::new(RIE_SYSTEM, RIE_SEVERE, format!("{}: {e}", self.path.display()))
+        RiError::new(
+            RIE_SYSTEM,
+            RIE_SEVERE,
+            format!("{}: {e}", self.path.display()),
+        )
     }
 }
 

@@ -29,7 +29,9 @@ pub fn target_for(name: Option<&str>) -> Option<String> {
     match name {
         Some("__render") | Some("") => None,
         Some(n) => Some(n.to_string()),
-        None => std::env::var("ILLUME_RIBOUT").ok().filter(|s| !s.is_empty()),
+        None => std::env::var("ILLUME_RIBOUT")
+            .ok()
+            .filter(|s| !s.is_empty()),
     }
 }
 
@@ -50,7 +52,11 @@ impl Session {
         let backend: Box<dyn Backend> = match target {
             None => Box::new(InProcess::new()),
             Some(path) => Box::new(RibWriter::create(Path::new(path)).map_err(|e| {
-                RiError::new(errors::RIE_NOFILE, errors::RIE_SEVERE, format!("RiBegin: {path}: {e}"))
+                RiError::new(
+                    errors::RIE_NOFILE,
+                    errors::RIE_SEVERE,
+                    format!("RiBegin: {path}: {e}"),
+                )
             })?),
         };
         let mut ri = Ri::new();
@@ -95,7 +101,7 @@ impl Session {
         self.calls += 1;
         let span = Span::new(Arc::from(format!("Ri{name}")), self.calls, 1, 0);
         let mut requests = Vec::new();
-        for item in illume_rib::Parser::new(text.as_bytes(), &*span.file) {
+        for item in illume_rib::Parser::new(text.as_bytes(), &span.file) {
             match item {
                 Ok(r) => requests.push(r.value),
                 Err(d) => self.pending.push(RiError::from_rib(&d)),

@@ -18,7 +18,14 @@ fn with_state<R: Default>(f: impl FnOnce(&mut State) -> R) -> R {
     let result = catch_unwind(AssertUnwindSafe(|| with(f)));
     let (value, bug) = match result {
         Ok(v) => (v, None),
-        Err(_) => (R::default(), Some(RiError::new(errors::RIE_BUG, errors::RIE_SEVERE, "internal error (panic) in libillume"))),
+        Err(_) => (
+            R::default(),
+            Some(RiError::new(
+                errors::RIE_BUG,
+                errors::RIE_SEVERE,
+                "internal error (panic) in libillume",
+            )),
+        ),
     };
     let mut queued = with(State::take_errors);
     queued.extend(bug);
@@ -61,7 +68,11 @@ unsafe fn strings(p: *const *const c_char, n: c_int) -> Option<Vec<String>> {
     // SAFETY: forwarded contract.
     let ptrs = unsafe { slice(p, n) }?;
     // SAFETY: each element is NULL or a C string per the contract.
-    Some(ptrs.into_iter().map(|s| unsafe { string(s) }.unwrap_or_default()).collect())
+    Some(
+        ptrs.into_iter()
+            .map(|s| unsafe { string(s) }.unwrap_or_default())
+            .collect(),
+    )
 }
 
 fn call_mut(st: &mut State) -> &mut Call {
@@ -84,7 +95,11 @@ pub extern "C" fn illume_begin(name: *const c_char) {
     let name = unsafe { string(name) };
     with_state(|st| {
         if st.session.is_some() {
-            st.report(RiError::new(errors::RIE_NESTING, errors::RIE_ERROR, "RiBegin: a session is already open (ignored)"));
+            st.report(RiError::new(
+                errors::RIE_NESTING,
+                errors::RIE_ERROR,
+                "RiBegin: a session is already open (ignored)",
+            ));
             return;
         }
         match Session::begin(illume_session::target_for(name.as_deref()).as_deref()) {
@@ -103,7 +118,11 @@ pub extern "C" fn illume_end() {
 }
 
 fn not_started(name: &str) -> RiError {
-    RiError::new(errors::RIE_NOTSTARTED, errors::RIE_ERROR, format!("Ri{name}: called before RiBegin (ignored)"))
+    RiError::new(
+        errors::RIE_NOTSTARTED,
+        errors::RIE_ERROR,
+        format!("Ri{name}: called before RiBegin (ignored)"),
+    )
 }
 
 /// Starts building the call to request `name` (as RIB spells it).
@@ -197,33 +216,60 @@ pub extern "C" fn illume_params(
 }
 
 /// The body of [`illume_params`].
-fn params(st: &mut State, n: c_int, tokens: *const *const c_char, parms: *const *const c_void, counts: Counts) {
+fn params(
+    st: &mut State,
+    n: c_int,
+    tokens: *const *const c_char,
+    parms: *const *const c_void,
+    counts: Counts,
+) {
     let name = call_mut(st).name.clone();
     if n > 0 && (tokens.is_null() || parms.is_null()) {
-        let e = RiError::new(errors::RIE_MISSINGDATA, errors::RIE_ERROR, format!("Ri{name}: {n} parameters but a NULL token or value list (parameters ignored)"));
+        let e = RiError::new(
+            errors::RIE_MISSINGDATA,
+            errors::RIE_ERROR,
+            format!("Ri{name}: {n} parameters but a NULL token or value list (parameters ignored)"),
+        );
         call_mut(st).problems.push(e);
         return;
     }
     // SAFETY: ri.h contract: `n` tokens and `n` value pointers.
-    let (toks, vals) = unsafe { (slice(tokens, n).unwrap_or_default(), slice(parms, n).unwrap_or_default()) };
+    let (toks, vals) = unsafe {
+        (
+            slice(tokens, n).unwrap_or_default(),
+            slice(parms, n).unwrap_or_default(),
+        )
+    };
     for (tok, val) in toks.into_iter().zip(vals) {
         // SAFETY: each token is NULL or a C string.
         let Some(token) = (unsafe { string(tok) }) else {
-            let e = RiError::new(errors::RIE_BADTOKEN, errors::RIE_ERROR, format!("Ri{name}: NULL parameter token (skipped)"));
+            let e = RiError::new(
+                errors::RIE_BADTOKEN,
+                errors::RIE_ERROR,
+                format!("Ri{name}: NULL parameter token (skipped)"),
+            );
             call_mut(st).problems.push(e);
             continue;
         };
         let decl = match st.session.as_ref().map(|s| s.declaration(&token)) {
             Some(Ok(d)) => d,
             Some(Err(m)) => {
-                let e = RiError::new(errors::RIE_BADTOKEN, errors::RIE_ERROR, format!("Ri{name}: {m} (skipped)"));
+                let e = RiError::new(
+                    errors::RIE_BADTOKEN,
+                    errors::RIE_ERROR,
+                    format!("Ri{name}: {m} (skipped)"),
+                );
                 call_mut(st).problems.push(e);
                 continue;
             }
             None => continue,
         };
         if val.is_null() {
-            let e = RiError::new(errors::RIE_MISSINGDATA, errors::RIE_ERROR, format!("Ri{name}: parameter `{token}` has a NULL value (skipped)"));
+            let e = RiError::new(
+                errors::RIE_MISSINGDATA,
+                errors::RIE_ERROR,
+                format!("Ri{name}: parameter `{token}` has a NULL value (skipped)"),
+            );
             call_mut(st).problems.push(e);
             continue;
         }
@@ -231,8 +277,12 @@ fn params(st: &mut State, n: c_int, tokens: *const *const c_char, parms: *const 
         // SAFETY: the RI contract sizes the value array by the declaration and class counts.
         let data = unsafe {
             match decl.ty {
-                illume_session::Type::Integer => ParamData::Ints(slice(val as *const c_int, len).unwrap_or_default()),
-                illume_session::Type::String => ParamData::Strings(strings(val as *const *const c_char, len).unwrap_or_default()),
+                illume_session::Type::Integer => {
+                    ParamData::Ints(slice(val as *const c_int, len).unwrap_or_default())
+                }
+                illume_session::Type::String => ParamData::Strings(
+                    strings(val as *const *const c_char, len).unwrap_or_default(),
+                ),
                 _ => ParamData::Floats(slice(val as *const f32, len).unwrap_or_default()),
             }
         };
@@ -279,7 +329,12 @@ pub extern "C" fn illume_report(code: c_int, severity: c_int, message: *const c_
 
 /// `RiTransformPoints`: 1 when done in place, 0 (the spec's NULL) when a space is unknown.
 #[no_mangle]
-pub extern "C" fn illume_transform_points(from: *const c_char, to: *const c_char, n: c_int, points: *mut f32) -> c_int {
+pub extern "C" fn illume_transform_points(
+    from: *const c_char,
+    to: *const c_char,
+    n: c_int,
+    points: *mut f32,
+) -> c_int {
     // SAFETY: names are C strings or NULL.
     let (Some(from), Some(to)) = (unsafe { string(from) }, unsafe { string(to) }) else {
         return 0;
