@@ -12,10 +12,12 @@
 mod backend;
 mod call;
 pub mod errors;
+mod framebuffer;
 
 pub use backend::{Backend, InProcess, RibWriter};
 pub use call::{Arg, Call, Counts, ParamData};
 pub use errors::{RiError, ERRORS, SEVERITIES};
+pub use framebuffer::{render_rib, Pixels};
 pub use illume_rib::{Class, Type};
 
 use glam::{DMat4, DVec3};
