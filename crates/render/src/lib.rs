@@ -12,6 +12,7 @@ mod renderinfo;
 mod shading;
 mod slshaders;
 mod tile;
+mod volumes;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};
 pub use frame_loop::{render_frames_in_order, texture_maker};

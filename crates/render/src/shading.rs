@@ -4,6 +4,7 @@
 //! shading (depth passes keep `Os`).
 use crate::rayscene::{self, RayScene};
 use crate::slshaders::SlShaders;
+use crate::volumes::{FrameVolumes, GridRelight, VolumeSlot};
 use glam::{DMat4, Vec3};
 use illume_geom::Grid;
 use illume_reyes::{GridShader, Shaded};
@@ -53,6 +54,8 @@ pub(crate) struct FrameShading<'a> {
     pub nonfinite: AtomicU64,
     /// Shaders found as `.sl` files on the shader searchpath (they win over the built-ins).
     sl: SlShaders,
+    /// `Atmosphere`/`Interior`/`Exterior` shaders.
+    volumes: FrameVolumes,
 }
 
 fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
@@ -129,6 +132,7 @@ impl<'a> FrameShading<'a> {
     ) -> (FrameShading<'a>, Vec<Diagnostic>) {
         let mut diags = Vec::new();
         let sl = SlShaders::bind(frame, &mut diags);
+        let volumes = FrameVolumes::bind(frame, &mut diags);
         let default_surface = Arc::new(Surface::default_surface());
         let surfaces = bind_surfaces(frame, &sl, &default_surface, &mut diags);
         let mut displacements: HashMap<usize, BoundDisplacement> = HashMap::new();
@@ -228,6 +232,7 @@ impl<'a> FrameShading<'a> {
             warnings: WarnOnce::new(),
             nonfinite: AtomicU64::new(0),
             sl,
+            volumes,
         };
         if needs_rays {
             // Casters are displaced like the grids the camera sees, so a displaced surface
@@ -403,19 +408,20 @@ impl<'a> FrameShading<'a> {
             cache.lights.push((proxy, samples));
             sl_outputs.push(outputs);
         }
-        let nonfinite = match sl_surface {
+        let mut view = illume_slvm::Lights::from_cache(&cache);
+        for (light, outputs) in view.lights[builtin_count..].iter_mut().zip(&sl_outputs) {
+            if let illume_slvm::LightSource::Builtin(request) = light.source {
+                light.source = illume_slvm::LightSource::Sl { outputs, request };
+            }
+        }
+        let mut nonfinite = match sl_surface {
             Some(s) => {
-                let mut view = illume_slvm::Lights::from_cache(&cache);
-                for (light, outputs) in view.lights[builtin_count..].iter_mut().zip(&sl_outputs) {
-                    if let illume_slvm::LightSource::Builtin(request) = light.source {
-                        light.source = illume_slvm::LightSource::Sl { outputs, request };
-                    }
-                }
                 let to_surface = illume_slvm::Messages {
                     displacement: self
                         .sl
                         .displacement(attrs)
                         .map_or(Vec::new(), |d| d.parameter_values(&g, &env)),
+                    atmosphere: self.volumes.atmosphere_messages(attrs, &g, &env),
                     ..Default::default()
                 };
                 s.shade_surface_with(&mut g, &view, &env, to_surface)
@@ -423,6 +429,22 @@ impl<'a> FrameShading<'a> {
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
         };
+        // The atmosphere attenuates what the surface left, before the hider composites.
+        let relight = GridRelight {
+            builtin: &lights,
+            sl: &self.sl,
+            indices: &attrs.lights,
+            env: &env,
+            messages: &to_lights,
+        };
+        nonfinite += self.volumes.volume_along(
+            attrs,
+            VolumeSlot::Atmosphere,
+            &mut g,
+            &env,
+            &view,
+            Some(&relight),
+        );
         if nonfinite > 0 {
             self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
         }

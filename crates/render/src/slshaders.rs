@@ -43,7 +43,7 @@ fn warning(shader: &Shader, request: &str, message: String) -> Diagnostic {
 }
 
 /// Binds `shader` as an SL shader of `kind` if its `.sl` is on the searchpath and compiles.
-fn bind(
+pub(crate) fn bind_sl(
     frame: &Frame,
     shader: &Shader,
     kind: ShaderKind,
@@ -89,7 +89,7 @@ impl SlShaders {
             if let Some(s) = a.surface.as_ref() {
                 let key = Arc::as_ptr(s) as usize;
                 if s.name != "null" && tried.insert((0, key)) {
-                    if let Some(i) = bind(
+                    if let Some(i) = bind_sl(
                         frame,
                         s,
                         ShaderKind::Surface,
@@ -104,7 +104,7 @@ impl SlShaders {
             if let Some(s) = a.displacement.as_ref() {
                 let key = Arc::as_ptr(s) as usize;
                 if tried.insert((1, key)) {
-                    if let Some(i) = bind(
+                    if let Some(i) = bind_sl(
                         frame,
                         s,
                         ShaderKind::Displacement,
@@ -122,7 +122,7 @@ impl SlShaders {
             .iter()
             .map(|l| {
                 let s = &l.shader;
-                let shader = bind(
+                let shader = bind_sl(
                     frame,
                     s,
                     ShaderKind::Light,

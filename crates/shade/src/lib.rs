@@ -47,6 +47,7 @@ mod shadingenv;
 mod shadinggrid;
 mod surface;
 mod texturelookup;
+mod volume;
 
 pub use areaemitter::AreaEmitter;
 pub use displacement::{displace, displacement, Displacement};
@@ -69,3 +70,4 @@ pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
+pub use volume::{run_volume, volume, Volume};

@@ -135,6 +135,15 @@ impl SlInstance {
             .collect()
     }
 
+    /// [`SlInstance::params`] for the other entry points of the crate.
+    pub(crate) fn params_for(&self, exec: &mut Exec, grid: &ShadingGrid) -> Vec<Value> {
+        self.params(exec, grid)
+    }
+
+    pub(crate) fn report_problems(exec: &Exec, env: &ShadingEnv, name: &str) {
+        Self::report(exec, env, name);
+    }
+
     fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
         for p in &exec.problems {
             env.warn(&format!("shader `{name}`: {p}"));
@@ -294,7 +303,7 @@ impl IntoPair for (Value, Value) {
     }
 }
 
-fn triple_vec(v: &Value, n: usize) -> Vec<Vec3> {
+pub(crate) fn triple_vec(v: &Value, n: usize) -> Vec<Vec3> {
     match v {
         Value::Triple(s) => s.to_varying(n),
         Value::Float(s) => s.to_varying(n).into_iter().map(Vec3::splat).collect(),

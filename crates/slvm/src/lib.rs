@@ -17,8 +17,10 @@ pub mod noise;
 pub mod operators;
 pub mod spline;
 mod value;
+mod volume;
 
 pub use exec::{zero_of, CompiledShader, Exec, Messages};
 pub use instance::{string_value, SlInstance, SlStats};
 pub use lights::{in_cone, LightSource, LightView, Lights};
 pub use value::{zip2, zip3, Mask, Slot, Value};
+pub use volume::Relight;

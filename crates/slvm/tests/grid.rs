@@ -314,3 +314,93 @@ displacement dented(float Km = 1, power = 3, frequency = 1) {
     }
     assert!(moved > before.len() / 2, "only {moved} points dented");
 }
+
+/// A height map `F(s, t) = a·s + b·t`, point-sampled at the footprint's first corner (the
+/// point's own `s`, `t`), for `bump()`.
+struct Ramp;
+
+const RAMP: (f32, f32) = (0.05, -0.08);
+
+impl illume_shade::TextureLookup for Ramp {
+    fn texture(
+        &self,
+        _name: &str,
+        _first: usize,
+        _n: usize,
+        st: [[f32; 2]; 4],
+        _o: &illume_shade::TextureOptions,
+    ) -> Option<[f32; 4]> {
+        let [s, t] = st[0];
+        Some([RAMP.0 * s + RAMP.1 * t; 4])
+    }
+    fn environment(
+        &self,
+        _: &str,
+        _: usize,
+        _: usize,
+        _: [Vec3; 4],
+        _: &illume_shade::TextureOptions,
+    ) -> Option<[f32; 4]> {
+        None
+    }
+    fn shadow(&self, _: &str, _: [Vec3; 4], _: &illume_shade::ShadowOptions) -> Option<f32> {
+        None
+    }
+}
+
+/// `bump()` (RI 3.1) and its RI 3.2 replacement `calculatenormal(P + F·normalize(N))` give the
+/// same bumped normal on a plane, and both equal the closed form (the displaced plane's tangents
+/// are (2, 0, F_s) and (0, 2, F_t)) within 1e-5: a linear height makes both difference schemes
+/// exact, so what is left is f32 rounding.
+#[test]
+fn bump_tilts_the_normal_like_calculatenormal_of_the_displaced_point() {
+    let (nu, nv) = (9, 9);
+    let mut g = ShadingGrid::new(nu, nv);
+    for i in 0..g.len() {
+        let (s, t) = (g.u[i], g.v[i]);
+        g.s[i] = s;
+        g.t[i] = t;
+        g.p[i] = Vec3::new(2.0 * s, 2.0 * t, 5.0);
+        g.dpdu[i] = Vec3::new(2.0, 0.0, 0.0);
+        g.dpdv[i] = Vec3::new(0.0, 2.0, 0.0);
+        g.n[i] = Vec3::new(0.0, 0.0, 4.0); // dPds × dPdt
+        g.ng[i] = g.n[i];
+    }
+    let shader = compile(
+        "surface b() {
+            normal Nb = normalize(N + bump(\"ramp\", N, dPdu, dPdv));
+            float F = float texture(\"ramp\", s, t);
+            normal Nc = normalize(calculatenormal(P + F * normalize(N)));
+            Ci = color(xcomp(Nb), ycomp(Nb), zcomp(Nb));
+            Oi = color(xcomp(Nc), ycomp(Nc), zcomp(Nc));
+        }",
+        ShaderKind::Surface,
+    );
+    let (inst, _) = SlInstance::bind(shader, &[], DMat4::IDENTITY);
+    let env = ShadingEnv {
+        textures: Some(&Ramp),
+        ..ShadingEnv::new()
+    };
+    let cache = LightCache::run(&[], &g, &env);
+    let lights = Lights::from_cache(&cache);
+    inst.shade_surface(&mut g, &lights, &env);
+    for i in 0..g.len() {
+        let (s, t) = (f64::from(g.s[i]), f64::from(g.t[i]));
+        let (fs, ft) = (f64::from(RAMP.0), f64::from(RAMP.1));
+        let exact = glam::DVec3::new(2.0, 0.0, fs)
+            .cross(glam::DVec3::new(0.0, 2.0, ft))
+            .normalize();
+        let bumped = g.ci[i].as_dvec3();
+        assert!(
+            (bumped - exact).length() < 1e-5,
+            "s {s} t {t}: bump {bumped} vs {exact}"
+        );
+        assert!(
+            (g.oi[i].as_dvec3() - bumped).length() < 1e-5,
+            "s {s} t {t}: calculatenormal {} vs bump {bumped}",
+            g.oi[i]
+        );
+        // Not the flat normal: the ramp tilts it measurably.
+        assert!(bumped.x < -0.02, "{bumped}");
+    }
+}

@@ -5,7 +5,7 @@
 //! | name | type | metal | roughmetal |
 //! |---|---|---|---|
 //! | Ka | float | 1 | 1 |
-//! | Kd | float | — | 0.1 (listing: Kd < 0.1 recommended… we take the shinymetal default) |
+//! | Kd | float | — | 0.1 (listing: Kd < 0.1 recommended; the chapter's shinymetal default) |
 //! | Ks | float | 1 | 1 |
 //! | roughness | float | 0.1 | 0.2 (listing: > 0.15) |
 use super::{f, SurfaceContext};

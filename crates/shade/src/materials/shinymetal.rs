@@ -4,15 +4,18 @@
 //!
 //! The RI 3.2 shader of the same name takes its map as `texturename` and looks it up by the
 //! world-space direction `R` (an infinitely distant environment); that is honoured when `envname`
-//! is empty.
+//! is empty. A RIB `Surface "shinymetal"` means the RI 3.2 standard shader, so the defaults are
+//! the standard's (RI 3.2 Appendix A: `Ka = 1, Ks = 1, Kr = 1, roughness = .1`, no diffuse term,
+//! hence `Kd = 0`); the chapter's listing declares `Kd .1, roughness .2, Kr .8`, which a RIB
+//! gives explicitly to get the book's look.
 //!
 //! | name | type | default |
 //! |---|---|---|
 //! | Ka | float | 1 |
-//! | Kd | float | 0.1 |
+//! | Kd | float | 0 |
 //! | Ks | float | 1 |
-//! | roughness | float | 0.2 |
-//! | Kr | float | 0.8 |
+//! | roughness | float | 0.1 |
+//! | Kr | float | 1 |
 //! | blur | float | 0 |
 //! | envname | string | "" |
 //! | envspace | string | "world" (`"NDC"`: flat reflection map, Listing 9.6) |
@@ -28,10 +31,10 @@ use glam::Vec3;
 pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     let mut p = vec![
         ("Ka", f(1.0)),
-        ("Kd", f(0.1)),
+        ("Kd", f(0.0)),
         ("Ks", f(1.0)),
-        ("roughness", f(0.2)),
-        ("Kr", f(0.8)),
+        ("roughness", f(0.1)),
+        ("Kr", f(1.0)),
         ("blur", f(0.0)),
     ];
     p.extend(envparams());
@@ -101,4 +104,42 @@ fn world_environment(
             kr[i] * environment_lookup(ctx.env, name, d, opts).0
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{light, shade_surface, surface, ShadingEnv, ShadingGrid};
+    use glam::{DMat4, Vec3};
+    use illume_rib::{Param, Value};
+
+    fn shade(params: &[(&str, f32)]) -> Vec<Vec3> {
+        let params: Vec<Param> = params
+            .iter()
+            .map(|(n, v)| Param {
+                name: n.to_string(),
+                value: Value::Floats(vec![*v]),
+            })
+            .collect();
+        let (s, w) = surface("shinymetal", &params).unwrap();
+        assert!(w.is_empty(), "{w:?}");
+        let (sun, _) = light("distantlight", &[], DMat4::IDENTITY).unwrap();
+        let (amb, _) = light("ambientlight", &[], DMat4::IDENTITY).unwrap();
+        let mut g = ShadingGrid::new(3, 1);
+        for (k, p) in g.p.iter_mut().enumerate() {
+            *p = Vec3::new(k as f32 - 1.0, 0.5, 5.0);
+        }
+        g.n = vec![Vec3::new(0.2, 0.1, -1.0); 3];
+        g.set_incident_from_p(false);
+        shade_surface(&s, &mut g, &[&sun, &amb], &ShadingEnv::new());
+        g.ci
+    }
+
+    /// RI 3.2 Appendix A: `shinymetal(Ka = 1, Ks = 1, Kr = 1, roughness = .1)`, no diffuse.
+    #[test]
+    fn defaults_are_the_ri_standard_shaders() {
+        let standard = [("Ka", 1.0), ("Kd", 0.0), ("Ks", 1.0), ("roughness", 0.1)];
+        assert_eq!(shade(&[]), shade(&standard));
+        let book = [("Kd", 0.1), ("roughness", 0.2)];
+        assert_ne!(shade(&[]), shade(&book));
+    }
 }

@@ -5,6 +5,7 @@
 //! (one evaluation per grid); the per-point kernels live in the crate's kernel modules
 //! (`mathfunctions`, `noise`, …) or in `illume_shade` where the built-in shaders already use
 //! them (so both agree bit for bit).
+mod bump;
 mod color;
 mod derivative;
 mod geometric;

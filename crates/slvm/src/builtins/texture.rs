@@ -78,7 +78,7 @@ impl Exec<'_> {
 
     /// Per point, the four footprint corners of a coordinate given once per point (its grid
     /// neighbours) or four times (explicit corners).
-    fn corners<T: Copy>(&self, coords: &[Slot<T>], i: usize) -> [T; 4] {
+    pub(super) fn corners<T: Copy>(&self, coords: &[Slot<T>], i: usize) -> [T; 4] {
         if coords.len() >= 4 {
             return [
                 *coords[0].at(i),
@@ -214,8 +214,7 @@ impl Exec<'_> {
                     .collect()
             }
             TextureKind::Bump => {
-                self.problem("bump() is not implemented; it returns 0".to_string());
-                return zero_of(ty);
+                return self.bump_call(tex, (&name, first), &opts.texture, &coords, mask);
             }
         };
         if missing {

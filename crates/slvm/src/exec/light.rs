@@ -46,7 +46,8 @@ impl Exec<'_> {
             },
             None => String::new(),
         };
-        let _position = self.eval(&il.position, mask);
+        let position = self.eval_triple(&il.position, mask);
+        let relit = self.relit(position);
         let cone = il.cone.as_ref().map(|c| {
             (
                 self.eval_triple(&c.axis, mask),
@@ -62,7 +63,7 @@ impl Exec<'_> {
         );
         for k in 0..self.lights.lights.len() {
             let light = self.lights.lights[k];
-            let s = light.samples;
+            let s = relit.as_ref().map_or(light.samples, |r| &r[k]);
             if s.ambient || !self.lights.matches(k, &category) {
                 continue;
             }
@@ -98,5 +99,29 @@ impl Exec<'_> {
         self.set_global(Global::Ol, saved.2);
         self.current_light = saved.3;
         self.pop_loop();
+    }
+}
+
+impl Exec<'_> {
+    /// The lights re-run at `position` through the volume shader's [`crate::Relight`] hook, when
+    /// there is one and `position` is not the grid's `P` (where the grid's samples already are).
+    fn relit(&mut self, position: Slot<Vec3>) -> Option<Vec<illume_shade::LightSamples>> {
+        let relight = self.relight?;
+        let p = position.to_varying(self.n);
+        if p == self.grid.p {
+            return None;
+        }
+        let samples = relight.relight(&p);
+        if samples.len() != self.lights.lights.len() || samples.iter().any(|s| s.l.len() != self.n)
+        {
+            self.problem(format!(
+                "illuminance: the lights re-run at another position gave {} lights, expected {}; \
+                 using the grid's",
+                samples.len(),
+                self.lights.lights.len()
+            ));
+            return None;
+        }
+        Some(samples)
     }
 }

@@ -101,6 +101,8 @@ pub struct Exec<'a> {
     pub(crate) problems: Vec<String>,
     /// What message passing to the primitive's other shaders can read.
     pub(crate) messages: Messages,
+    /// Lights at other points than the grid's (volume shaders' `illuminance(Pmarch)`).
+    pub(crate) relight: Option<&'a dyn crate::Relight>,
 }
 
 impl<'a> Exec<'a> {
@@ -150,6 +152,7 @@ impl<'a> Exec<'a> {
             random_site: 0,
             problems: Vec::new(),
             messages: Messages::default(),
+            relight: None,
         }
     }
 
