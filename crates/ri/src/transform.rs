@@ -140,7 +140,9 @@ impl Ri {
         }
     }
 
-    pub(crate) fn named_space(&self, name: &str) -> Option<DMat4> {
+    /// Camera from a named space (`camera`, `current`/`object`, `world`, a `CoordinateSystem`
+    /// name): what `RiTransformPoints` composes.
+    pub fn named_space(&self, name: &str) -> Option<DMat4> {
         match name {
             "camera" => Some(DMat4::IDENTITY),
             "current" | "object" => Some(self.ctm),
