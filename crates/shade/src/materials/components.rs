@@ -1,8 +1,8 @@
 //! The built-in materials' lighting components (issue 20), for the displays that name them:
 //! `__ambient`, `__diffuse`, `__specular` and `__reflection` (environment map or traced). The
 //! driver multiplies them by `Oi`, so for every material listed in [`surface_components`]
-//! they add up to `Ci` (each material's `components` mirrors its `shade` term by term; the
-//! tests in `tests/aov.rs` check the sum to 1e-5).
+//! they add up to `Ci` (plastic, metal, shinymetal and shinyplastic shade as the sum of their
+//! components; matte mirrors its `material_matte` term by term; `tests/aov.rs` checks the sum to 1e-5).
 use super::{SurfaceContext, SurfaceKind};
 use crate::light::LightCache;
 use crate::shadingenv::ShadingEnv;
@@ -30,6 +30,13 @@ impl Components {
             specular: vec![Vec3::ZERO; n],
             reflection: vec![Vec3::ZERO; n],
         }
+    }
+
+    /// Their sum per point: the material's `Ci` before `Oi`.
+    pub(crate) fn total(&self) -> Vec<Vec3> {
+        (0..self.ambient.len())
+            .map(|i| self.ambient[i] + self.diffuse[i] + self.specular[i] + self.reflection[i])
+            .collect()
     }
 
     /// The component named `COMPONENT_NAMES[k]`.

@@ -48,28 +48,7 @@ pub(super) fn components(ctx: &SurfaceContext, rough: bool) -> Components {
     out
 }
 
+/// `Ci` before `Oi`: the sum of [`components`], so the AOVs add up to it by construction.
 pub(super) fn shade(ctx: &SurfaceContext, rough: bool) -> Vec<Vec3> {
-    let g = ctx.grid;
-    let p = ctx.params;
-    let (ka, kd, ks, r) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-    );
-    let l = ctx.lights;
-    (0..g.len())
-        .map(|i| {
-            let diffuse = if rough {
-                kd.at(i) * l.diffuse(i, ctx.nf[i])
-            } else {
-                Vec3::ZERO
-            };
-            g.cs[i]
-                * (ka.at(i) * l.ambient(i)
-                    + diffuse
-                    + ks.at(i)
-                        * l.specular(i, ctx.nf[i], ctx.v[i], r.at(i), ctx.env.specular_model))
-        })
-        .collect()
+    components(ctx, rough).total()
 }

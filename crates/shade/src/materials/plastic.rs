@@ -59,29 +59,7 @@ pub(super) fn components(ctx: &SurfaceContext) -> Components {
     out
 }
 
+/// `Ci` before `Oi`: the sum of [`components`], so the AOVs add up to it by construction.
 pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
-    let g = ctx.grid;
-    let p = ctx.params;
-    let (ka, kd, ks, rough) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-    );
-    let spec = p.vec3_on(g, "specularcolor");
-    let name = p.string("texturename");
-    let tex = (!name.is_empty()).then(|| texture_colors(ctx.env, g, name, 3, 0.0));
-    (0..g.len())
-        .map(|i| {
-            let ct = match &tex {
-                Some(t) => g.cs[i] * Vec3::new(t[i][0], t[i][1], t[i][2]),
-                None => g.cs[i],
-            };
-            let l = ctx.lights;
-            ct * (ka.at(i) * l.ambient(i) + kd.at(i) * l.diffuse(i, ctx.nf[i]))
-                + spec.at(i)
-                    * ks.at(i)
-                    * l.specular(i, ctx.nf[i], ctx.v[i], rough.at(i), ctx.env.specular_model)
-        })
-        .collect()
+    components(ctx).total()
 }

@@ -90,28 +90,9 @@ pub(super) fn components(ctx: &SurfaceContext) -> Components {
     out
 }
 
+/// `Ci` before `Oi`: the sum of [`components`], so the AOVs add up to it by construction.
 pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
-    let g = ctx.grid;
-    let p = ctx.params;
-    let n = g.len();
-    let (ka, kd, ks, r) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-    );
-    let env_term = environment_term(ctx);
-    let l = ctx.lights;
-    (0..n)
-        .map(|i| {
-            let nf = ctx.nf[i];
-            g.cs[i]
-                * (ka.at(i) * l.ambient(i)
-                    + kd.at(i) * l.diffuse(i, nf)
-                    + ks.at(i) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model)
-                    + env_term[i])
-        })
-        .collect()
+    components(ctx).total()
 }
 
 /// RI 3.2 shinymetal's `Kr * environment(texturename, R in "world")`.
