@@ -328,10 +328,11 @@ static void texture_head(const char *req, char *pic, char *tex) {
   illume_string(tex);
 }
 
-RtVoid RiMakeTextureV(char *pic, char *tex, RtToken swrap, RtToken twrap, RtFilterFunc filterfunc,
-                      RtFloat swidth, RtFloat twidth, RtInt n, RtToken tokens[],
-                      RtPointer parms[]) {
-  texture_head("MakeTexture", pic, tex);
+/* MakeTexture and MakeBump take the same arguments in the same order. */
+static void make_wrapped(const char *req, char *pic, char *tex, RtToken swrap, RtToken twrap,
+                         RtFilterFunc filterfunc, RtFloat swidth, RtFloat twidth, RtInt n,
+                         RtToken tokens[], RtPointer parms[]) {
+  texture_head(req, pic, tex);
   illume_string(swrap);
   illume_string(twrap);
   illume_string(illume_filter_name(filterfunc));
@@ -339,6 +340,13 @@ RtVoid RiMakeTextureV(char *pic, char *tex, RtToken swrap, RtToken twrap, RtFilt
   illume_float(twidth);
   illume_params1(n, tokens, parms);
   illume_send();
+}
+
+RtVoid RiMakeTextureV(char *pic, char *tex, RtToken swrap, RtToken twrap, RtFilterFunc filterfunc,
+                      RtFloat swidth, RtFloat twidth, RtInt n, RtToken tokens[],
+                      RtPointer parms[]) {
+  make_wrapped("MakeTexture", pic, tex, swrap, twrap, filterfunc, swidth, twidth, n, tokens,
+               parms);
 }
 RtVoid RiMakeTexture(char *pic, char *tex, RtToken swrap, RtToken twrap, RtFilterFunc filterfunc,
                      RtFloat swidth, RtFloat twidth, ...) {
@@ -347,14 +355,7 @@ RtVoid RiMakeTexture(char *pic, char *tex, RtToken swrap, RtToken twrap, RtFilte
 }
 RtVoid RiMakeBumpV(char *pic, char *tex, RtToken swrap, RtToken twrap, RtFilterFunc filterfunc,
                    RtFloat swidth, RtFloat twidth, RtInt n, RtToken tokens[], RtPointer parms[]) {
-  texture_head("MakeBump", pic, tex);
-  illume_string(swrap);
-  illume_string(twrap);
-  illume_string(illume_filter_name(filterfunc));
-  illume_float(swidth);
-  illume_float(twidth);
-  illume_params1(n, tokens, parms);
-  illume_send();
+  make_wrapped("MakeBump", pic, tex, swrap, twrap, filterfunc, swidth, twidth, n, tokens, parms);
 }
 RtVoid RiMakeBump(char *pic, char *tex, RtToken swrap, RtToken twrap, RtFilterFunc filterfunc,
                   RtFloat swidth, RtFloat twidth, ...) {
