@@ -9,8 +9,8 @@
 //! requests build nothing, and archives read from disk are capped at 64 KiB and clamped the
 //! same way. Rendering runs on one thread.
 #![no_main]
-use illume_rib::{Request, Spanned};
 use illume_ri::{from_rib_diagnostic, RequestSource, Ri};
+use illume_rib::{Request, Spanned};
 use libfuzzer_sys::fuzz_target;
 use std::io::Read;
 
@@ -47,16 +47,20 @@ const DEFAULTS: &str = "Format 16 12 1\nPixelSamples 1 1\nShadingRate 4\n";
 fuzz_target!(|data: &[u8]| {
     static POOL: std::sync::Once = std::sync::Once::new();
     POOL.call_once(|| {
-        let _ = rayon::ThreadPoolBuilder::new().num_threads(1).build_global();
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build_global();
     });
     let Ok(reader) = illume_rib::decompress(std::io::Cursor::new(data.to_vec())) else {
         return;
     };
     let mut ri = Ri::new();
-    ri.set_parser(Box::new(|reader: Box<dyn Read>, name: &str| -> RequestSource {
-        let parser = illume_rib::Parser::new(reader.take(64 << 10), name);
-        Box::new(limited(parser.map(|r| r.map_err(from_rib_diagnostic))))
-    }));
+    ri.set_parser(Box::new(
+        |reader: Box<dyn Read>, name: &str| -> RequestSource {
+            let parser = illume_rib::Parser::new(reader.take(64 << 10), name);
+            Box::new(limited(parser.map(|r| r.map_err(from_rib_diagnostic))))
+        },
+    ));
     ri.set_texture_maker(Box::new(|_, _| Ok(())));
     let defaults = illume_rib::Parser::new(DEFAULTS.as_bytes(), "defaults");
     let input = illume_rib::Parser::new(reader, "fuzz.rib");
@@ -66,8 +70,13 @@ fuzz_target!(|data: &[u8]| {
         progress: None,
         textures: Some(&cache),
     };
-    illume_render::render_frames_in_order(&mut ri, requests, |_| {}, |frame| {
-        assert!(frame.options.xres <= 24 && frame.options.yres <= 24);
-        let _ = illume_render::render(&frame, &settings);
-    });
+    illume_render::render_frames_in_order(
+        &mut ri,
+        requests,
+        |_| {},
+        |frame| {
+            assert!(frame.options.xres <= 24 && frame.options.yres <= 24);
+            let _ = illume_render::render(&frame, &settings);
+        },
+    );
 });

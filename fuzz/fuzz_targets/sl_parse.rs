@@ -9,7 +9,13 @@ fuzz_target!(|data: &[u8]| {
     let name = illume_fuzz::scratch_path("sl-dir").join("fuzz.sl");
     let mut map = SourceMap::new();
     let mut diags = Vec::new();
-    let tokens = preprocess_str(&mut map, &name.to_string_lossy(), &text, &PpOptions::default(), &mut diags);
+    let tokens = preprocess_str(
+        &mut map,
+        &name.to_string_lossy(),
+        &text,
+        &PpOptions::default(),
+        &mut diags,
+    );
     let _ = parse(&tokens, &mut diags);
     for d in &diags {
         let _ = d.render(&map).to_string();

@@ -31,7 +31,11 @@ fuzz_target!(|data: &[u8]| {
         wrap: [wraps[(op % 3) as usize], wraps[(op / 3 % 3) as usize]],
         resize: resizes[(op >> 2 & 3) as usize],
         filter: filters[(op >> 4) as usize % filters.len()],
-        format: if op & 0x80 != 0 { PixelFormat::Float } else { PixelFormat::Half },
+        format: if op & 0x80 != 0 {
+            PixelFormat::Float
+        } else {
+            PixelFormat::Half
+        },
         ..MakeOptions::default()
     };
     let _ = std::fs::remove_file(&out);

@@ -16,7 +16,10 @@ fn crash_files() -> Vec<PathBuf> {
 #[test]
 fn every_fuzz_crash_is_an_error_that_names_the_file() {
     let files = crash_files();
-    assert!(!files.is_empty(), "the fuzz_crashes directory lost its files");
+    assert!(
+        !files.is_empty(),
+        "the fuzz_crashes directory lost its files"
+    );
     for path in files {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         let result = std::panic::catch_unwind(|| {
@@ -28,7 +31,10 @@ fn every_fuzz_crash_is_an_error_that_names_the_file() {
         });
         let result = result.unwrap_or_else(|_| panic!("{name}: the reader panicked"));
         match result {
-            Ok(img) => panic!("{name}: expected an error, read a {}×{} image", img.width, img.height),
+            Ok(img) => panic!(
+                "{name}: expected an error, read a {}×{} image",
+                img.width, img.height
+            ),
             Err(e) => assert!(
                 e.to_string().contains(&name),
                 "{name}: the error does not name the file: {e}"

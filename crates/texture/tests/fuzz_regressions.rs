@@ -45,7 +45,10 @@ fn every_fuzz_crash_is_an_error() {
         .map(|e| e.expect("directory entry").path())
         .collect();
     files.sort();
-    assert!(!files.is_empty(), "the fuzz_crashes directory lost its files");
+    assert!(
+        !files.is_empty(),
+        "the fuzz_crashes directory lost its files"
+    );
     for path in files {
         let bytes = std::fs::read(&path).expect("readable crash file");
         let (params, texture) = bytes.split_at(8);
@@ -59,6 +62,9 @@ fn every_fuzz_crash_is_an_error() {
         let errors = std::panic::catch_unwind(|| lookups(params, &name));
         let _ = std::fs::remove_file(&scratch);
         let errors = errors.unwrap_or_else(|_| panic!("{label}: a lookup panicked"));
-        assert!(errors > 0, "{label}: expected the corrupt texture to be an error");
+        assert!(
+            errors > 0,
+            "{label}: expected the corrupt texture to be an error"
+        );
     }
 }
