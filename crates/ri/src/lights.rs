@@ -23,7 +23,7 @@ impl Ri {
             Illuminate { handle, on } => {
                 let Some(i) = self.lights.iter().position(|l| l.handle == handle) else {
                     self.diagnostics
-                        .error(span, &name, format!("no light with handle {handle:?}"));
+                        .error_kind(crate::ErrorKind::BadHandle, span, &name, format!("no light with handle {handle:?}"));
                     return;
                 };
                 let a = self.attrs();
@@ -34,7 +34,7 @@ impl Ri {
             }
             other => {
                 self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
+                    .error_kind(crate::ErrorKind::Bug, span, other.name(), "request not handled here (internal)")
             }
         }
     }

@@ -128,7 +128,7 @@ impl Ri {
             },
             other => {
                 self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
+                    .error_kind(crate::ErrorKind::Bug, span, other.name(), "request not handled here (internal)")
             }
         }
     }

@@ -166,7 +166,7 @@ impl Ri {
             Attribute { name: n, params } => self.user_attribute(&n, &params, span),
             other => {
                 self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
+                    .error_kind(crate::ErrorKind::Bug, span, other.name(), "request not handled here (internal)")
             }
         }
     }

@@ -65,7 +65,7 @@ impl Ri {
                 .warn(span, &name, "not supported yet (ignored)"),
             other => {
                 self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
+                    .error_kind(crate::ErrorKind::Bug, span, other.name(), "request not handled here (internal)")
             }
         }
     }
