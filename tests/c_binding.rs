@@ -195,7 +195,7 @@ fn binary_and_gzip_rib_output_read_back_as_the_ascii_requests() {
         ("gzip.rib", "RiOption(\"rib\", \"string compression\", gz, RI_NULL);"),
         (
             "both.rib",
-            "RiOption(\"rib\", \"format\", fmt, \"compression\", gz, RI_NULL);",
+            "RiOption(\"rib\", \"string format\", fmt, \"string compression\", gz, RI_NULL);",
         ),
         ("suffix.rib.gz", ""),
     ];
@@ -223,7 +223,7 @@ fn binary_and_gzip_rib_output_read_back_as_the_ascii_requests() {
     }
     // The binary files really are binary (request definitions, RI 3.2 Appendix C: 0314).
     let binary = std::fs::read(dir.join("binary.rib")).unwrap();
-    assert!(binary.contains(&0xcc) && binary.len() < std::fs::read(dir.join("ascii.rib")).unwrap().len());
+    assert!(binary.contains(&0xcc) && binary.contains(&0xa6), "no binary request codes");
     // And an independent reader agrees: catrib of the binary file is the ASCII file.
     let out = Command::new(&t.catrib).arg("binary.rib").current_dir(&dir).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
