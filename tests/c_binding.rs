@@ -179,7 +179,10 @@ fn every_request_writes_catribs_canonical_rib() {
 fn parsed(path: &Path) -> Vec<illume_rib::Request> {
     illume_rib::open(path)
         .unwrap()
-        .map(|r| r.unwrap_or_else(|d| panic!("{}: {d}", path.display())).value)
+        .map(|r| {
+            r.unwrap_or_else(|d| panic!("{}: {d}", path.display()))
+                .value
+        })
         .collect()
 }
 
@@ -191,8 +194,14 @@ fn binary_and_gzip_rib_output_read_back_as_the_ascii_requests() {
     // One session per encoding; the options go right after RiBegin, as PRMan's do.
     let sessions = [
         ("ascii.rib", ""),
-        ("binary.rib", "RiOption(\"rib\", \"string format\", fmt, RI_NULL);"),
-        ("gzip.rib", "RiOption(\"rib\", \"string compression\", gz, RI_NULL);"),
+        (
+            "binary.rib",
+            "RiOption(\"rib\", \"string format\", fmt, RI_NULL);",
+        ),
+        (
+            "gzip.rib",
+            "RiOption(\"rib\", \"string compression\", gz, RI_NULL);",
+        ),
         (
             "both.rib",
             "RiOption(\"rib\", \"string format\", fmt, \"string compression\", gz, RI_NULL);",
@@ -213,7 +222,11 @@ fn binary_and_gzip_rib_output_read_back_as_the_ascii_requests() {
     for (file, _) in &sessions[1..] {
         let bytes = std::fs::read(dir.join(file)).unwrap();
         let gzip = bytes.starts_with(&[0x1f, 0x8b]);
-        assert_eq!(gzip, file.contains("gz") || file.starts_with("both"), "{file}");
+        assert_eq!(
+            gzip,
+            file.contains("gz") || file.starts_with("both"),
+            "{file}"
+        );
         let got = parsed(&dir.join(file));
         for (i, (g, w)) in got.iter().zip(&ascii).enumerate() {
             let call = if i == 0 { "header" } else { TABLE[i - 1].0 };
@@ -223,10 +236,21 @@ fn binary_and_gzip_rib_output_read_back_as_the_ascii_requests() {
     }
     // The binary files really are binary (request definitions, RI 3.2 Appendix C: 0314).
     let binary = std::fs::read(dir.join("binary.rib")).unwrap();
-    assert!(binary.contains(&0xcc) && binary.contains(&0xa6), "no binary request codes");
+    assert!(
+        binary.contains(&0xcc) && binary.contains(&0xa6),
+        "no binary request codes"
+    );
     // And an independent reader agrees: catrib of the binary file is the ASCII file.
-    let out = Command::new(&t.catrib).arg("binary.rib").current_dir(&dir).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = Command::new(&t.catrib)
+        .arg("binary.rib")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert_eq!(
         String::from_utf8(out.stdout).unwrap(),
         std::fs::read_to_string(dir.join("ascii.rib")).unwrap()
@@ -249,7 +273,9 @@ fn ribout_captures_can_be_binary_and_compressed_from_the_environment() {
         ("ILLUME_RIBCOMPRESSION", "gzip"),
     ];
     run(&exe, &dir, &env);
-    assert!(std::fs::read(dir.join("b.rib")).unwrap().starts_with(&[0x1f, 0x8b]));
+    assert!(std::fs::read(dir.join("b.rib"))
+        .unwrap()
+        .starts_with(&[0x1f, 0x8b]));
     assert_eq!(parsed(&dir.join("b.rib")), parsed(&dir.join("a.rib")));
 }
 

@@ -91,7 +91,11 @@ fn a_user_filter_unlike_any_standard_one_is_used_as_written() {
         .count();
     assert!(differing > 20, "only {differing} samples differ");
     let centre = (16 * 48 + 24) * a.channels.len();
-    assert!((b.data[centre] - 1.0).abs() < 1e-3, "interior red: {}", b.data[centre]);
+    assert!(
+        (b.data[centre] - 1.0).abs() < 1e-3,
+        "interior red: {}",
+        b.data[centre]
+    );
 }
 
 #[test]
@@ -117,7 +121,10 @@ int main(void) {
     let exe = compile(&t, &dir, prog);
     let out = run(&exe, &dir, &[]);
     // RIE_INCAPABLE (11), a warning (1), naming the filter written.
-    assert!(out.starts_with("11 1 ") && out.contains("\"triangle\""), "{out}");
+    assert!(
+        out.starts_with("11 1 ") && out.contains("\"triangle\""),
+        "{out}"
+    );
     let rib = std::fs::read_to_string(dir.join("f.rib")).unwrap();
     assert!(rib.contains("PixelFilter \"triangle\" 3 2\n"), "{rib}");
 }
@@ -223,6 +230,10 @@ int main(void) {{
             .take(2)
             .filter_map(|w| w.parse().ok())
             .collect();
-        assert_eq!(got, [*code, *severity], "{name}: first report `{first}`\n{out}");
+        assert_eq!(
+            got,
+            [*code, *severity],
+            "{name}: first report `{first}`\n{out}"
+        );
     }
 }

@@ -68,4 +68,3 @@ pub fn run(exe: &Path, dir: &Path, env: &[(&str, &str)]) -> String {
     );
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
-

@@ -116,8 +116,12 @@ impl Ri {
     /// deeper, inside an attribute block unless it is inlined.
     fn nested(&mut self, span: &Span, what: &str, scope: Scope, body: impl FnOnce(&mut Ri)) {
         if self.nesting >= MAX_NESTING {
-            self.diagnostics
-                .error_kind(crate::ErrorKind::Limit, span, what, "nested too deeply (recursive archive?)");
+            self.diagnostics.error_kind(
+                crate::ErrorKind::Limit,
+                span,
+                what,
+                "nested too deeply (recursive archive?)",
+            );
             return;
         }
         self.nesting += 1;
@@ -181,10 +185,12 @@ impl Ri {
                 "ReadArchive",
                 scope,
             ),
-            Err(e) => {
-                self.diagnostics
-                    .error_kind(crate::ErrorKind::BadFile, span, "ReadArchive", format!("{}: {e}", path.display()))
-            }
+            Err(e) => self.diagnostics.error_kind(
+                crate::ErrorKind::BadFile,
+                span,
+                "ReadArchive",
+                format!("{}: {e}", path.display()),
+            ),
         }
     }
 

@@ -144,13 +144,25 @@ impl Diagnostics {
     /// An error of the most common kind: arguments that make no sense together
     /// ([`ErrorKind::Consistency`]).
     pub fn error(&mut self, span: &Span, request: &str, message: impl Into<String>) {
-        self.report(Severity::Error, ErrorKind::Consistency, span, request, message);
+        self.report(
+            Severity::Error,
+            ErrorKind::Consistency,
+            span,
+            request,
+            message,
+        );
     }
 
     /// A warning of the most common kind: something not supported, ignored or approximated
     /// ([`ErrorKind::Unimplemented`]).
     pub fn warn(&mut self, span: &Span, request: &str, message: impl Into<String>) {
-        self.report(Severity::Warning, ErrorKind::Unimplemented, span, request, message);
+        self.report(
+            Severity::Warning,
+            ErrorKind::Unimplemented,
+            span,
+            request,
+            message,
+        );
     }
 
     /// An error of a stated kind (nesting, handles, files…).

@@ -146,7 +146,10 @@ impl Ri {
 
     /// Puts a program's tabulated filter function in place of the current `PixelFilter`'s
     /// kernel (the C binding's user `RtFilterFunc`; a later `PixelFilter` request clears it).
-    pub fn set_filter_table(&mut self, table: Option<std::sync::Arc<illume_core::filter::FilterTable>>) {
+    pub fn set_filter_table(
+        &mut self,
+        table: Option<std::sync::Arc<illume_core::filter::FilterTable>>,
+    ) {
         self.options.filter_table = table;
     }
 
@@ -278,10 +281,12 @@ impl Ri {
             TransformEnd => self.end_block(BlockKind::Transform, &span, &name),
             SolidEnd => self.end_block(BlockKind::Solid, &span, &name),
             MotionEnd => self.end_block(BlockKind::Motion, &span, &name),
-            ObjectEnd | ArchiveEnd => {
-                self.diagnostics
-                    .error_kind(crate::ErrorKind::Nesting, &span, &name, "no matching Begin is open (ignored)")
-            }
+            ObjectEnd | ArchiveEnd => self.diagnostics.error_kind(
+                crate::ErrorKind::Nesting,
+                &span,
+                &name,
+                "no matching Begin is open (ignored)",
+            ),
             ObjectBegin(_) | ArchiveBegin { .. } => unreachable!("handled by record"),
             ObjectInstance(h) => self.object_instance(&h, &span),
             ReadArchive { name: file, .. } => self.read_archive(&file, &span, Scope::Inline),
@@ -342,7 +347,8 @@ impl Ri {
     pub(crate) fn end_block(&mut self, kind: BlockKind, span: &Span, name: &str) {
         let Some(pos) = self.blocks.iter().rposition(|b| b.kind == kind) else {
             let msg = format!("no matching {} is open (ignored)", kind.begin());
-            self.diagnostics.error_kind(crate::ErrorKind::Nesting, span, name, msg);
+            self.diagnostics
+                .error_kind(crate::ErrorKind::Nesting, span, name, msg);
             return;
         };
         while self.blocks.len() > pos + 1 {
@@ -352,7 +358,8 @@ impl Ri {
                 top.kind.begin(),
                 top.span
             );
-            self.diagnostics.error_kind(crate::ErrorKind::Nesting, span, name, msg);
+            self.diagnostics
+                .error_kind(crate::ErrorKind::Nesting, span, name, msg);
             self.pop_block();
         }
         self.pop_block();

@@ -53,7 +53,11 @@ impl<R: Read> Parser<R> {
     /// Comment records read so far, in order, as (structural, text); empty unless
     /// [`Parser::keep_comments`].
     pub fn take_comments(&mut self) -> Vec<(bool, String)> {
-        self.lexer.comments.as_mut().map(std::mem::take).unwrap_or_default()
+        self.lexer
+            .comments
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
     }
 
     /// The name spans use for this stream.

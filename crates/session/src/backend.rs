@@ -69,11 +69,7 @@ fn render_frame(frame: &Frame) -> Vec<RiError> {
         textures: Some(&cache),
     };
     let rendered = illume_render::render(frame, &settings);
-    let mut errors: Vec<RiError> = rendered
-        .warnings
-        .iter()
-        .map(RiError::from_ri)
-        .collect();
+    let mut errors: Vec<RiError> = rendered.warnings.iter().map(RiError::from_ri).collect();
     for result in illume_render::write_displays(frame, &rendered) {
         if let Err(e) = result {
             errors.push(RiError::new(RIE_BADFILE, RIE_ERROR, e.to_string()));

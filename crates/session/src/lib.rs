@@ -17,13 +17,13 @@ mod framebuffer;
 mod ribwriter;
 
 pub use backend::{Backend, InProcess};
-pub use ribwriter::{RibFormat, RibWriter};
 pub use call::{Arg, Call, Counts, ParamData};
 pub use errors::{RiError, ERRORS, SEVERITIES};
 pub use filter::nearest_standard;
 pub use framebuffer::{render_rib, Pixels};
 pub use illume_core::filter::FilterTable;
 pub use illume_rib::{Class, Type};
+pub use ribwriter::{RibFormat, RibWriter};
 
 use glam::{DMat4, DVec3};
 use illume_ri::Ri;
@@ -176,11 +176,17 @@ impl Session {
                 RiError::new(
                     errors::RIE_NOFILE,
                     errors::RIE_ERROR,
-                    format!("RiReadArchive: can not find \"{name}\" (searched the archive searchpath)"),
+                    format!(
+                        "RiReadArchive: can not find \"{name}\" (searched the archive searchpath)"
+                    ),
                 )
             })?;
         let bad = |e: std::io::Error| {
-            RiError::new(errors::RIE_BADFILE, errors::RIE_ERROR, format!("RiReadArchive: {}: {e}", path.display()))
+            RiError::new(
+                errors::RIE_BADFILE,
+                errors::RIE_ERROR,
+                format!("RiReadArchive: {}: {e}", path.display()),
+            )
         };
         let mut parser = illume_rib::open(&path).map_err(bad)?.keep_comments();
         // Requests and their problems are `ReadArchive`'s business; only the records are kept.

@@ -69,7 +69,9 @@ impl RibWriter {
     /// Creates the file now (so a bad path is reported by `RiBegin`); nothing is written yet.
     pub fn create(path: &Path) -> io::Result<RibWriter> {
         let env = |k: &str| std::env::var(k).unwrap_or_default().to_ascii_lowercase();
-        let gz_name = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+        let gz_name = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
         Ok(RibWriter {
             file: Some(File::create(path)?),
             stream: None,
@@ -87,7 +89,11 @@ impl RibWriter {
     }
 
     fn io_error(&self, e: io::Error) -> RiError {
-        RiError::new(RIE_SYSTEM, RIE_SEVERE, format!("{}: {e}", self.path.display()))
+        RiError::new(
+            RIE_SYSTEM,
+            RIE_SEVERE,
+            format!("{}: {e}", self.path.display()),
+        )
     }
 
     /// The encoder, started on first use with the header comment.
@@ -172,7 +178,8 @@ impl Backend for RibWriter {
 
     fn comment(&mut self, text: &str) -> Result<(), RiError> {
         let result = self.stream().and_then(|s| {
-            text.lines().try_for_each(|line| writeln!(s.get_mut(), "#{line}"))
+            text.lines()
+                .try_for_each(|line| writeln!(s.get_mut(), "#{line}"))
         });
         result.map_err(|e| self.io_error(e))
     }

@@ -20,7 +20,12 @@ pub struct FilterTable {
 
 impl FilterTable {
     /// Tabulates `f(x, y)` on an `n`×`n` grid over the support of the given full widths.
-    pub fn tabulate(n: usize, xwidth: f32, ywidth: f32, mut f: impl FnMut(f32, f32) -> f32) -> Self {
+    pub fn tabulate(
+        n: usize,
+        xwidth: f32,
+        ywidth: f32,
+        mut f: impl FnMut(f32, f32) -> f32,
+    ) -> Self {
         let n = n.max(1);
         let mut values = Vec::with_capacity(n * n);
         for j in 0..n {

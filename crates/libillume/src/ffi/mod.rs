@@ -376,7 +376,11 @@ pub extern "C" fn illume_user_pixel_filter(f: FilterFunc, xwidth: f32, ywidth: f
     if !(xwidth > 0.0 && ywidth > 0.0) {
         // The request itself reports the bad widths.
         let mut call = Call::new("PixelFilter");
-        call.args = vec![Arg::Str("box".into()), Arg::Float(xwidth), Arg::Float(ywidth)];
+        call.args = vec![
+            Arg::Str("box".into()),
+            Arg::Float(xwidth),
+            Arg::Float(ywidth),
+        ];
         return with_state(|st| match &mut st.session {
             Some(s) => s.send(call),
             None => st.orphan.push(not_started("PixelFilter")),
