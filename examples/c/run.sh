@@ -3,7 +3,8 @@
 # in-process (RiBegin(RI_NULL)) and through the RIB it writes under ILLUME_RIBOUT, rendered
 # by `render`; then installs the library (crates/libillume/install.sh: libillume.so, illume.pc)
 # under the output dir, checks the .so exports only the RI binding (`nm -D`), builds one example
-# against the .so through pkg-config and checks it renders the same bits as the static build.
+# against the .so through pkg-config and checks it renders the same bits as the static build,
+# as does its capture in gzip-compressed binary RIB rendered by `render`.
 # Needs: cargo build --release -p libillume -p render (or PROFILE=debug).
 # Usage: examples/c/run.sh [outdir]   (default: a temporary directory, removed afterwards)
 set -euo pipefail
@@ -60,12 +61,18 @@ cc -Wall -Wextra -Werror -o "$out/$name/$name-shared" "$root/examples/c/$name.c"
 LD_LIBRARY_PATH="$prefix/lib" ldd "$out/$name/$name-shared" | grep -q "$so" \
   || { echo "examples/c: $name-shared is not linked against $so" >&2; status=1; }
 (cd "$out/$name/shared" && LD_LIBRARY_PATH="$prefix/lib" "../$name-shared")
+# And its capture as gzip-compressed binary RIB renders the same bits through `render`.
+mkdir -p "$out/$name/binary"
+(cd "$out/$name/binary" && ILLUME_RIBOUT="$name.rib.gz" ILLUME_RIBFORMAT=binary \
+  LD_LIBRARY_PATH="$prefix/lib" "../$name-shared" && "$render" -q "$name.rib.gz")
 for img in $(cd "$out/$name/direct" && ls *.tif); do
-  if cmp -s "$out/$name/direct/$img" "$out/$name/shared/$img"; then
-    echo "examples/c: $name: $img via libillume.so == via libillume.a (bit-identical)"
-  else
-    echo "examples/c: $name: $img differs between libillume.so and libillume.a" >&2
-    status=1
-  fi
+  for via in shared binary; do
+    if cmp -s "$out/$name/direct/$img" "$out/$name/$via/$img"; then
+      echo "examples/c: $name: $img via $via == in-process via libillume.a (bit-identical)"
+    else
+      echo "examples/c: $name: $img differs between $via and in-process via libillume.a" >&2
+      status=1
+    fi
+  done
 done
 exit $status
