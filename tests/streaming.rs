@@ -42,14 +42,24 @@ fn same_files_both_ways(dir: &Path, rib: impl Fn(&Path) -> String, crop: Option<
     }
     let frame = &support::frames(&rib(&streamed), crop)[0];
     let (report, written) = render_to_displays(frame, &RenderSettings::default());
-    assert_eq!(report.warnings.len(), r.warnings.len(), "{:?}", report.warnings);
+    assert_eq!(
+        report.warnings.len(),
+        r.warnings.len(),
+        "{:?}",
+        report.warnings
+    );
     assert_eq!(written.len(), 7);
     for w in written {
         let w = w.unwrap();
         let name = w.path.file_name().unwrap().to_owned();
         let a = std::fs::read(whole.join(&name)).unwrap();
         let b = std::fs::read(&w.path).unwrap();
-        assert!(a == b, "{name:?} differs ({} vs {} bytes)", a.len(), b.len());
+        assert!(
+            a == b,
+            "{name:?} differs ({} vs {} bytes)",
+            a.len(),
+            b.len()
+        );
     }
     // Nothing left under a temporary name.
     for entry in std::fs::read_dir(&streamed).unwrap() {
@@ -86,7 +96,9 @@ fn a_pass_that_starts_over_streams_the_final_image() {
     let frame = &support::frames(&rib(&dir.join("probe")), None)[0];
     let r = render(frame, &RenderSettings::default());
     assert!(
-        r.warnings.iter().any(|w| w.message.contains("re-rendering")),
+        r.warnings
+            .iter()
+            .any(|w| w.message.contains("re-rendering")),
         "the scene must overflow its bound: {:?}",
         r.warnings
     );

@@ -198,11 +198,13 @@ fn render_frame(
     // whole crop, so `--tile-out` renders into memory.
     let (rendered, written) = match output {
         Output::Displays => {
-            let (r, written) =
-                pool.install(|| illume_render::render_to_displays(frame, &settings));
+            let (r, written) = pool.install(|| illume_render::render_to_displays(frame, &settings));
             (r, Some(written))
         }
-        Output::Tile { .. } => (pool.install(|| illume_render::render(frame, &settings)), None),
+        Output::Tile { .. } => (
+            pool.install(|| illume_render::render(frame, &settings)),
+            None,
+        ),
     };
     let render_seconds = t.elapsed().as_secs_f64();
     if let Some(b) = bar {

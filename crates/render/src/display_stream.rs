@@ -13,7 +13,7 @@ use illume_ri::Frame;
 /// One display being written.
 enum Output {
     /// Rows go to the file as they arrive (`None` before the first pass).
-    Rows(Option<TiffRows>),
+    Rows(Option<Box<TiffRows>>),
     /// Written from the whole-frame buffer at the end.
     Whole,
 }
@@ -118,7 +118,7 @@ impl RowSink for DisplayStream<'_> {
                 plan.quantize,
                 [cx0, cy0],
             ) {
-                Ok(r) => *rows = Some(r),
+                Ok(r) => *rows = Some(Box::new(r)),
                 Err(e) => *d = Err(e.into()),
             }
         }

@@ -91,20 +91,31 @@ impl<'r> WeightTable<'r> {
         for k in -reach[0]..=reach[0] {
             for (s, &(sxp, _)) in region.pos.iter().enumerate() {
                 let qx = cell(s).0;
-                table.fx.push(filter.factor_x(sxp - ((qx + k) as f32 + 0.5)));
+                table
+                    .fx
+                    .push(filter.factor_x(sxp - ((qx + k) as f32 + 0.5)));
             }
         }
         for k in -reach[1]..=reach[1] {
             for (s, &(_, syp)) in region.pos.iter().enumerate() {
                 let qy = cell(s).1;
-                table.fy.push(filter.factor_y(syp - ((qy + k) as f32 + 0.5)));
+                table
+                    .fy
+                    .push(filter.factor_y(syp - ((qy + k) as f32 + 0.5)));
             }
         }
         table
     }
 
     /// The weights of the samples `base..base + out.len()` (all in pixel `q`) for pixel `px`.
-    fn weights(&self, filter: &PixelFilter, base: usize, px: [u32; 2], q: [i32; 2], out: &mut [f32]) {
+    fn weights(
+        &self,
+        filter: &PixelFilter,
+        base: usize,
+        px: [u32; 2],
+        q: [i32; 2],
+        out: &mut [f32],
+    ) {
         let (kx, ky) = (px[0] as i32 - q[0], px[1] as i32 - q[1]);
         let n = self.pos.len();
         let end = base + out.len();

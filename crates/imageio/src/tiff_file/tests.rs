@@ -195,8 +195,18 @@ fn rows_streamed_in_any_bands_make_the_whole_image_file_byte_for_byte() {
         let image = gradient(700, 61, channels);
         let whole = dir.join("whole.tif");
         super::write_tiff(&whole, &image, q, [5, 9]).unwrap();
-        for bands in [&[61][..], &[1, 60][..], &[16, 16, 16, 13][..], &[23, 23, 15][..], &[7; 8][..]] {
-            let bands: Vec<u32> = bands.iter().copied().chain([61 - bands.iter().sum::<u32>()]).collect();
+        for bands in [
+            &[61][..],
+            &[1, 60][..],
+            &[16, 16, 16, 13][..],
+            &[23, 23, 15][..],
+            &[7; 8][..],
+        ] {
+            let bands: Vec<u32> = bands
+                .iter()
+                .copied()
+                .chain([61 - bands.iter().sum::<u32>()])
+                .collect();
             let streamed = dir.join("streamed.tif");
             let names = image.channels.clone();
             let mut w = super::TiffRows::create(&streamed, [700, 61], &names, q, [5, 9]).unwrap();

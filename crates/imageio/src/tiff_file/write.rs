@@ -193,12 +193,18 @@ impl TiffRows {
             self.strip_offsets.push(self.offset);
             self.strip_counts.push(s.len() as u32);
             self.offset += s.len() as u64;
-            self.file.writer().write_all(s).map_err(|e| io_error(&path, e))?;
+            self.file
+                .writer()
+                .write_all(s)
+                .map_err(|e| io_error(&path, e))?;
         }
         if self.offset > u32::MAX as u64 / 2 {
             return Err(format_error(
                 &path,
-                format!("expected a TIFF under 2 GiB, found {} bytes of pixels", self.offset),
+                format!(
+                    "expected a TIFF under 2 GiB, found {} bytes of pixels",
+                    self.offset
+                ),
             ));
         }
         Ok(())
