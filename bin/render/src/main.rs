@@ -194,7 +194,18 @@ fn render_frame(
         textures: Some(&cache),
     };
     let t = Instant::now();
-    let rendered = pool.install(|| illume_render::render(frame, &settings));
+    // Displays are written while the frame renders (streaming output); a tile file holds the
+    // whole crop, so `--tile-out` renders into memory.
+    let (rendered, written) = match output {
+        Output::Displays => {
+            let (r, written) = pool.install(|| illume_render::render_to_displays(frame, &settings));
+            (r, Some(written))
+        }
+        Output::Tile { .. } => (
+            pool.install(|| illume_render::render(frame, &settings)),
+            None,
+        ),
+    };
     let render_seconds = t.elapsed().as_secs_f64();
     if let Some(b) = bar {
         b.finish_and_clear();
@@ -221,7 +232,7 @@ fn render_frame(
         }
         return errors;
     }
-    for result in illume_render::write_displays(frame, &rendered) {
+    for result in written.into_iter().flatten() {
         match result {
             Ok(w) if w.framebuffer => {
                 eprintln!(

@@ -8,6 +8,62 @@ use crate::ImageError;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+/// A file being written under its temporary name across many calls (streamed displays):
+/// [`AtomicFile::commit`] renames it into place; dropping it uncommitted removes it.
+pub struct AtomicFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    writer: Option<BufWriter<std::fs::File>>,
+}
+
+impl AtomicFile {
+    /// Creates the temporary file beside `path`.
+    pub fn create(path: &Path) -> Result<AtomicFile, ImageError> {
+        let tmp = temporary_path(path);
+        let file = std::fs::File::create(&tmp).map_err(|e| io_err(path, e))?;
+        Ok(AtomicFile {
+            path: path.to_path_buf(),
+            tmp,
+            writer: Some(BufWriter::new(file)),
+        })
+    }
+
+    /// The buffered writer (seekable: `BufWriter` flushes before it seeks).
+    pub fn writer(&mut self) -> &mut BufWriter<std::fs::File> {
+        self.writer.as_mut().expect("AtomicFile used after commit")
+    }
+
+    /// Flushes, syncs and renames the file to its real name.
+    pub fn commit(mut self) -> Result<(), ImageError> {
+        let path = self.path.clone();
+        let mut writer = self.writer.take().expect("AtomicFile committed twice");
+        let result = writer
+            .flush()
+            .and_then(|()| writer.get_ref().sync_all())
+            .and_then(|()| {
+                drop(writer);
+                std::fs::rename(&self.tmp, &path)
+            });
+        result.map_err(|e| io_err(&path, e))
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        // Not committed (an error, or a render pass that starts over): leave nothing behind.
+        if self.writer.take().is_some() || self.tmp.exists() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+fn io_err(path: &Path, source: std::io::Error) -> ImageError {
+    ImageError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
 /// The temporary name beside `path`: `.name.illume-tmp-<pid>` (hidden, unique per process).
 fn temporary_path(path: &Path) -> PathBuf {
     let name = path

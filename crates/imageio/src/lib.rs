@@ -51,11 +51,12 @@ mod raster_limits;
 mod tiff_file;
 mod zfile;
 
-pub use atomic_write::write_atomically;
+pub use atomic_write::{write_atomically, AtomicFile};
 pub use framebuffer::framebuffer_path;
 pub use openexr::world_to_ndc;
 pub use quantize::{dither_noise, SampleDepth};
 pub use raster_limits::{MAX_DIMENSION, MAX_SAMPLES};
+pub use tiff_file::TiffRows;
 pub use zfile::{read_zfile, write_zfile, write_zfile_with_order, ZFILE_MAGIC};
 
 use std::path::Path;

@@ -2,6 +2,7 @@
 //! No `Display` means `ri.tif` (rgba); `framebuffer` writes a PNG named after the display.
 use crate::Rendered;
 use illume_imageio::{write_display_cropped, DepthMatrices, Image, ImageError, Quantize};
+use illume_reyes::AovLayout;
 use illume_ri::{transform, DisplaySpec, Frame};
 use std::path::PathBuf;
 
@@ -51,105 +52,205 @@ pub fn display_image(r: &Rendered, mode: &str) -> Option<Image> {
     })
 }
 
+/// Writes every display of `frame` from the whole rendered image `r`.
 pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay, DisplayError>> {
-    let default = [DisplaySpec {
-        name: "ri.tif".into(),
-        kind: "tiff".into(),
-        mode: "rgba".into(),
-        ..Default::default()
-    }];
+    plan_displays(frame, &r.aov_layout)
+        .into_iter()
+        .map(|plan| plan?.write(frame, r))
+        .collect()
+}
+
+/// The displays a frame writes: its `Display`s, or `ri.tif` (rgba) when it names none.
+pub(crate) fn frame_displays(frame: &Frame) -> Vec<DisplaySpec> {
+    if frame.options.displays.is_empty() {
+        vec![DisplaySpec {
+            name: "ri.tif".into(),
+            kind: "tiff".into(),
+            mode: "rgba".into(),
+            ..Default::default()
+        }]
+    } else {
+        frame.options.displays.clone()
+    }
+}
+
+/// One display, decided before any pixel exists: file, kind, channels and quantization.
+/// Whether a mode is valid depends only on the mode and the variables the hider carries, so
+/// the decision is the same for a whole image ([`write_displays`]) and for streamed rows.
+pub(crate) struct DisplayPlan {
+    pub(crate) name: String,
+    pub(crate) path: PathBuf,
+    /// The file kind written (`framebuffer` writes `png`).
+    pub(crate) kind: String,
+    pub(crate) framebuffer: bool,
+    /// `Display "shadow"`: a shadow map (.sm) from depth, whatever the mode says.
+    pub(crate) shadow: bool,
+    /// Letters of `rgbaz`, or the display's mode items (arbitrary output variables).
+    channels: Channels,
+    pub(crate) quantize: Quantize,
+}
+
+enum Channels {
+    Letters(String),
+    Items(Vec<crate::aov::ModeItem>),
+}
+
+/// A plan per display of `frame`, in order; `layout` is what the hider carries.
+pub(crate) fn plan_displays(
+    frame: &Frame,
+    layout: &AovLayout,
+) -> Vec<Result<DisplayPlan, DisplayError>> {
     // Every variable the hider carried, as the mode parser's last source of types.
-    let rendered_vars: crate::aov::SlOutputs = r
-        .aov_layout
+    let rendered_vars: crate::aov::SlOutputs = layout
         .channels
         .iter()
         .map(|c| (c.name.clone(), c.components, c.colour))
         .collect();
-    let displays = if frame.options.displays.is_empty() {
-        &default[..]
+    frame_displays(frame)
+        .iter()
+        .map(|d| plan_display(frame, d, &rendered_vars))
+        .collect()
+}
+
+fn plan_display(
+    frame: &Frame,
+    d: &DisplaySpec,
+    rendered_vars: &crate::aov::SlOutputs,
+) -> Result<DisplayPlan, DisplayError> {
+    let shadow = d.kind == "shadow";
+    let mode = if shadow { "z" } else { d.mode.as_str() };
+    let framebuffer = d.kind == "framebuffer";
+    let mut non_colour = false;
+    let channels = if is_letters(mode) {
+        Channels::Letters(mode.to_string())
+    } else if mode.contains(',') || !mode.is_empty() {
+        let items = crate::aov::mode_items(d, frame, rendered_vars).map_err(|message| {
+            DisplayError::Channels {
+                name: d.name.clone(),
+                message,
+            }
+        })?;
+        non_colour = crate::aov_display::has_non_colour(&items);
+        Channels::Items(items)
     } else {
-        &frame.options.displays[..]
+        return Err(DisplayError::Mode {
+            name: d.name.clone(),
+            mode: d.mode.clone(),
+        });
     };
+    let (path, kind) = if framebuffer {
+        let p = PathBuf::from(&d.name);
+        let p = if p.extension().is_some_and(|e| e == "png") {
+            p
+        } else {
+            p.with_extension("png")
+        };
+        (p, "png".to_string())
+    } else {
+        (PathBuf::from(&d.name), d.kind.clone())
+    };
+    let q = if d.mode == "z" {
+        frame.options.quantize_z
+    } else {
+        frame.options.quantize_rgba
+    };
+    let q = Quantize {
+        one: q.one,
+        min: q.min,
+        max: q.max,
+        dither: q.dither,
+    };
+    // Depth and non-colour variables are never quantized, dithered or clamped.
+    let quantize = if non_colour {
+        Quantize::FLOAT
+    } else {
+        crate::aov_display::display_quantize(d, q)
+    };
+    Ok(DisplayPlan {
+        name: d.name.clone(),
+        path,
+        kind,
+        framebuffer,
+        shadow,
+        channels,
+        quantize,
+    })
+}
+
+/// Whether `mode` is a group of `rgbaz` letters ([`display_image`]'s modes).
+fn is_letters(mode: &str) -> bool {
+    !mode.is_empty() && mode.chars().all(|c| "rgbaz".contains(c))
+}
+
+impl DisplayPlan {
+    /// The display's float image of the pixels in `r` (a whole crop or a band of its rows).
+    pub(crate) fn image(&self, r: &Rendered) -> Result<Image, DisplayError> {
+        match &self.channels {
+            Channels::Letters(mode) => display_image(r, mode).ok_or_else(|| DisplayError::Mode {
+                name: self.name.clone(),
+                mode: mode.clone(),
+            }),
+            Channels::Items(items) => {
+                let kind = if self.framebuffer {
+                    "png"
+                } else {
+                    self.kind.as_str()
+                };
+                crate::aov_display::aov_image(r, items, &kind.to_ascii_lowercase()).map_err(
+                    |message| DisplayError::Channels {
+                        name: self.name.clone(),
+                        message,
+                    },
+                )
+            }
+        }
+    }
+
+    /// Whether rows can go to the file as they arrive (TIFF strips); other kinds are written
+    /// from a whole-frame buffer at the end.
+    pub(crate) fn streams(&self) -> bool {
+        !self.shadow && matches!(self.kind.to_ascii_lowercase().as_str(), "tiff" | "file")
+    }
+
+    /// Writes the display from the whole rendered crop `r`.
+    pub(crate) fn write(self, frame: &Frame, r: &Rendered) -> Result<WrittenDisplay, DisplayError> {
+        let image = self.image(r)?;
+        if self.shadow {
+            let opts = illume_texture::MakeOptions {
+                source: "Display \"shadow\"".into(),
+                ..Default::default()
+            };
+            illume_texture::make_shadow(&image, &depth_matrices(frame), &self.path, &opts)?;
+        } else {
+            // Dither is keyed on full-frame pixels, so crops rendered apart (`--crop`,
+            // render farms) quantize exactly as the same pixels of a full render.
+            let depth = depth_matrices(frame);
+            write_display_cropped(
+                &self.path,
+                &self.kind,
+                &image,
+                self.quantize,
+                Some(&depth),
+                [r.x0, r.y0],
+            )?;
+        }
+        Ok(self.written())
+    }
+
+    pub(crate) fn written(self) -> WrittenDisplay {
+        WrittenDisplay {
+            path: self.path,
+            kind: self.kind,
+            framebuffer: self.framebuffer,
+        }
+    }
+}
+
+/// The camera's matrices `zfile`, `shadow` and `openexr` record.
+fn depth_matrices(frame: &Frame) -> DepthMatrices {
     let cam = &frame.camera;
-    let depth = DepthMatrices {
+    DepthMatrices {
         world_to_screen: transform::to_rib(&cam.screen_from_world()),
         world_to_camera: transform::to_rib(&cam.camera_from_world),
-    };
-    displays
-        .iter()
-        .map(|d| {
-            // `Display "shadow"` writes a shadow map (.sm) directly from depth, whatever the
-            // mode says: the same file `MakeShadow` makes from a zfile.
-            let shadow = d.kind == "shadow";
-            let mode = if shadow { "z" } else { d.mode.as_str() };
-            let framebuffer = d.kind == "framebuffer";
-            let letters = display_image(r, mode);
-            let mut non_colour = false;
-            let image = match letters {
-                Some(image) => image,
-                None if mode.contains(',') || !mode.is_empty() => {
-                    let channels = |message| DisplayError::Channels {
-                        name: d.name.clone(),
-                        message,
-                    };
-                    let items =
-                        crate::aov::mode_items(d, frame, &rendered_vars).map_err(channels)?;
-                    non_colour = crate::aov_display::has_non_colour(&items);
-                    let kind = if framebuffer { "png" } else { d.kind.as_str() };
-                    crate::aov_display::aov_image(r, &items, &kind.to_ascii_lowercase())
-                        .map_err(channels)?
-                }
-                None => {
-                    return Err(DisplayError::Mode {
-                        name: d.name.clone(),
-                        mode: d.mode.clone(),
-                    })
-                }
-            };
-            let (path, kind) = if framebuffer {
-                let p = PathBuf::from(&d.name);
-                let p = if p.extension().is_some_and(|e| e == "png") {
-                    p
-                } else {
-                    p.with_extension("png")
-                };
-                (p, "png".to_string())
-            } else {
-                (PathBuf::from(&d.name), d.kind.clone())
-            };
-            let q = if d.mode == "z" {
-                frame.options.quantize_z
-            } else {
-                frame.options.quantize_rgba
-            };
-            let q = Quantize {
-                one: q.one,
-                min: q.min,
-                max: q.max,
-                dither: q.dither,
-            };
-            // Depth and non-colour variables are never quantized, dithered or clamped.
-            let q = if non_colour {
-                Quantize::FLOAT
-            } else {
-                crate::aov_display::display_quantize(d, q)
-            };
-            if shadow {
-                let opts = illume_texture::MakeOptions {
-                    source: "Display \"shadow\"".into(),
-                    ..Default::default()
-                };
-                illume_texture::make_shadow(&image, &depth, &path, &opts)?;
-            } else {
-                // Dither is keyed on full-frame pixels, so crops rendered apart (`--crop`,
-                // render farms) quantize exactly as the same pixels of a full render.
-                write_display_cropped(&path, &kind, &image, q, Some(&depth), [r.x0, r.y0])?;
-            }
-            Ok(WrittenDisplay {
-                path,
-                kind,
-                framebuffer,
-            })
-        })
-        .collect()
+    }
 }

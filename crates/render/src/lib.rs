@@ -8,6 +8,7 @@
 pub mod aov;
 mod aov_display;
 pub mod display;
+mod display_stream;
 mod frame_loop;
 mod imaging;
 mod rayscene;
@@ -19,6 +20,7 @@ mod trace;
 mod volumes;
 
 pub use display::{write_displays, DisplayError, WrittenDisplay};
+pub use display_stream::DisplayStream;
 pub use frame_loop::{render_frames_in_order, texture_maker};
 pub use illume_reyes::{PixelFilter, Rendered, Stats};
 pub use tile::{read_tile, write_tile, Tile};
@@ -39,13 +41,39 @@ pub struct RenderSettings<'a> {
 
 /// Renders one frame (uses the current rayon pool: `ThreadPool::install` to choose threads).
 pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
+    let (hider, shading) = prepare(frame, settings);
+    let rendered = hider.render(&shading, settings.progress);
+    finish(rendered, &shading)
+}
+
+/// Renders one frame straight into its displays (streaming output, issue 21): finished rows
+/// go to the files while later buckets render, so memory does not grow with the frame (see
+/// [`DisplayStream`] for the display kinds that still need a whole-frame buffer). The files
+/// equal [`render`] then [`write_displays`], byte for byte. The [`Rendered`] returned carries
+/// statistics and warnings; its pixel buffers are empty.
+pub fn render_to_displays(
+    frame: &Frame,
+    settings: &RenderSettings,
+) -> (Rendered, Vec<Result<WrittenDisplay, DisplayError>>) {
+    let (hider, shading) = prepare(frame, settings);
+    let mut displays = DisplayStream::new(frame, &shading.aov);
+    let rendered = hider.render_to(&shading, settings.progress, &mut displays);
+    (finish(rendered, &shading), displays.finish())
+}
+
+/// The hider with the frame's shading bound and the output variables it must carry.
+fn prepare<'f>(frame: &'f Frame, settings: &RenderSettings<'f>) -> (Hider<'f>, FrameShading<'f>) {
     let mut hider = Hider::new(frame);
     let (mut shading, binding_warnings) = FrameShading::new(frame, settings.textures);
     hider.warnings.extend(binding_warnings);
     let (layout, _) = aov::frame_layout(frame, &shading.sl.surface_outputs());
     shading.aov = layout.clone();
     hider.set_aovs(layout);
-    let mut rendered = hider.render(&shading, settings.progress);
+    (hider, shading)
+}
+
+/// Adds what the shading stage counted and found to the hider's report.
+fn finish(mut rendered: Rendered, shading: &FrameShading) -> Rendered {
     rendered.stats.nonfinite = shading.nonfinite.load(Relaxed);
     // Shading problems found while rendering (missing maps, unknown spaces), once each.
     rendered.warnings.extend(

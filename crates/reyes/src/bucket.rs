@@ -48,6 +48,20 @@ impl BucketLayout {
         self.count[0] * self.count[1]
     }
 
+    /// The buckets of bucket row `by` (buckets are numbered row by row), and the pixel rows
+    /// y0 y1 they cover. Rendering band after band lets the film print whole pixel rows and
+    /// hand them on while the next band renders, and frees grids in the order the rows go.
+    pub fn band(&self, by: usize) -> (std::ops::Range<usize>, [u32; 2]) {
+        let nbx = self.count[0];
+        let r = self.rect(by * nbx);
+        (by * nbx..(by + 1) * nbx, [r[2], r[3]])
+    }
+
+    /// The number of bucket rows.
+    pub fn band_count(&self) -> usize {
+        self.count[1]
+    }
+
     /// The pixels x0 x1 y0 y1 of bucket `b` (buckets row by row).
     pub fn rect(&self, b: usize) -> [u32; 4] {
         let [cx0, cx1, cy0, cy1] = self.crop;

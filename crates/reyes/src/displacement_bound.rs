@@ -7,7 +7,6 @@
 //! the thread count, and it equals the image a large enough bound gives (the same pieces,
 //! diced the same). One warning per primitive says what it cost.
 use crate::bucket::{BucketLayout, GridSlot};
-use crate::film::PixelBlock;
 use crate::refine::{Piece, Refiner};
 use glam::Vec3;
 use illume_ri::{Diagnostic, Frame, Severity};
@@ -25,45 +24,46 @@ pub(crate) struct Overflow {
     pub(crate) displacement: f32,
 }
 
-/// Renders every bucket with `pass` (given the pieces, every bucket's list, the buckets to
-/// render and one [`GridSlot`] per piece; it returns their blocks in that order), then again
-/// the buckets a grown piece reaches, until no piece grows. Returns every bucket's block and
-/// the overflow warnings.
+/// Renders every bucket with `pass` (given the pieces, every bucket's list and one
+/// [`GridSlot`] per piece), then again while some piece grows. Returns the overflow warnings.
+///
+/// Each pass renders the whole frame, because the pass streams its rows out as it goes (the
+/// sink restarts on the next pass). That equals re-rendering only the buckets whose lists
+/// changed: a bucket's pixels depend only on its list and its pieces' depths, and a piece whose
+/// depth changed is nearer, which puts every bucket listing it among the changed ones (the
+/// warning counts those, the buckets that had to be rendered again).
 pub(crate) fn render_until_bounded(
     frame: &Frame,
     refiner: &Refiner,
     layout: &BucketLayout,
     pieces: &mut [Piece],
-    mut pass: impl FnMut(&[Piece], &[Vec<usize>], &[usize], &[GridSlot]) -> Vec<PixelBlock>,
-) -> (Vec<PixelBlock>, Vec<Diagnostic>) {
+    mut pass: impl FnMut(&[Piece], &[Vec<usize>], &[GridSlot]),
+) -> Vec<Diagnostic> {
     let mut lists = layout.lists(pieces);
-    let mut buckets: Vec<PixelBlock> = vec![Default::default(); layout.bucket_count()];
-    let mut todo: Vec<usize> = (0..layout.bucket_count()).collect();
     let mut bounds = Measured::new(pieces);
-    while !todo.is_empty() {
+    loop {
         let mut overlaps = vec![0usize; pieces.len()];
-        for &b in &todo {
-            for &id in &lists[b] {
+        for list in &lists {
+            for &id in list {
                 overlaps[id] += 1;
             }
         }
         let grids: Vec<GridSlot> = overlaps.into_iter().map(GridSlot::new).collect();
-        let out = pass(pieces, &lists, &todo, &grids);
-        for (&b, o) in todo.iter().zip(out) {
-            buckets[b] = o;
-        }
+        pass(pieces, &lists, &grids);
         let Some(nearer) = bounds.grow(frame, refiner, pieces, &grids) else {
             break;
         };
         let relisted = layout.lists(pieces);
-        todo = (0..layout.bucket_count())
+        let changed = (0..layout.bucket_count())
             .filter(|&b| relisted[b] != lists[b] || relisted[b].iter().any(|&id| nearer[id]))
-            .collect();
+            .count();
         lists = relisted;
-        bounds.rerendered += todo.len();
+        bounds.rerendered += changed;
+        if changed == 0 {
+            break;
+        }
     }
-    let warnings = overflow_warnings(frame, pieces, &bounds.overflows, bounds.rerendered);
-    (buckets, warnings)
+    overflow_warnings(frame, pieces, &bounds.overflows, bounds.rerendered)
 }
 
 /// What the loop has learnt about each piece so far.

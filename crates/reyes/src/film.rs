@@ -1,12 +1,14 @@
 //! The film: what happens to composited samples on their way to pixels. Each bucket's samples
 //! are filtered into a [`PixelBlock`] (pixel filter for colour, depth filter for `z`); the
-//! blocks are pasted into the crop window's image and exposed (RI Spec 3.2 `RiExposure`).
+//! blocks of one band of buckets are pasted into whole rows and exposed (RI Spec 3.2 `RiExposure`).
 //! Quantization and dithering are the displays' business (`illume-imageio`, through the
 //! driver): the film hands over premultiplied float RGBA and depth.
 //!
-//! Why a stage of its own: streaming output (finished buckets written while others render) and
-//! arbitrary output variables both extend what a bucket hands over, not how it is rendered.
+//! Why a stage of its own: streaming output (each band of buckets printed into whole rows and
+//! handed to a [`crate::RowSink`] while later bands render) and arbitrary output variables both
+//! extend what a bucket hands over, not how it is rendered.
 use crate::filter::PixelFilter;
+use crate::row_sink::PixelRows;
 use illume_ri::{DepthFilter, Options};
 
 /// One sample after visible-point compositing.
@@ -45,6 +47,94 @@ pub struct PixelBlock {
     pub aov: Vec<f32>,
 }
 
+/// The pixel filter's weights for one bucket, precomputed per sample (issue 21 part 3): a
+/// separable filter's weight for sample `s` and pixel (x, y) is `fx[x − qx][s] · fy[y − qy][s]`
+/// where (qx, qy) is the sample's own pixel, so each factor is evaluated once per sample and
+/// pixel column (row) it reaches, not once per sample and pixel. The factors are computed from
+/// the same offsets as [`PixelFilter::weight`], so the weights are the same floats.
+struct WeightTable<'r> {
+    /// Pixel columns (rows) each side of a sample's own pixel that its weight can reach.
+    reach: [i32; 2],
+    /// Per offset `k = −reach..=reach` from the sample's own column (row), the factor of every
+    /// sample of the region (`k`-major, so one pixel's samples are contiguous); empty for a
+    /// filter that is not separable.
+    fx: Vec<f32>,
+    fy: Vec<f32>,
+    pos: &'r [(f32, f32)],
+}
+
+impl<'r> WeightTable<'r> {
+    fn new(filter: &PixelFilter, region: &SampleRegion<'r>) -> WeightTable<'r> {
+        let (rx, ry) = filter.radius();
+        // A sample in pixel q reaches pixel x only if |x + 0.5 − q − f| ≤ r for some f in
+        // [0, 1): |x − q| < r + 0.5.
+        let reach = [(rx + 0.5).ceil() as i32, (ry + 0.5).ceil() as i32];
+        let mut table = WeightTable {
+            reach,
+            fx: Vec::new(),
+            fy: Vec::new(),
+            pos: region.pos,
+        };
+        if !filter.is_separable() {
+            return table;
+        }
+        let [sx0, sy0] = region.origin;
+        let sw = region.size[0].max(1);
+        let n_per = region.per_pixel.max(1);
+        let cell = |s: usize| {
+            let p = s / n_per;
+            (sx0 + (p % sw) as i32, sy0 + (p / sw) as i32)
+        };
+        let n = region.pos.len();
+        table.fx.reserve(n * (2 * reach[0] + 1) as usize);
+        table.fy.reserve(n * (2 * reach[1] + 1) as usize);
+        for k in -reach[0]..=reach[0] {
+            for (s, &(sxp, _)) in region.pos.iter().enumerate() {
+                let qx = cell(s).0;
+                table
+                    .fx
+                    .push(filter.factor_x(sxp - ((qx + k) as f32 + 0.5)));
+            }
+        }
+        for k in -reach[1]..=reach[1] {
+            for (s, &(_, syp)) in region.pos.iter().enumerate() {
+                let qy = cell(s).1;
+                table
+                    .fy
+                    .push(filter.factor_y(syp - ((qy + k) as f32 + 0.5)));
+            }
+        }
+        table
+    }
+
+    /// The weights of the samples `base..base + out.len()` (all in pixel `q`) for pixel `px`.
+    fn weights(
+        &self,
+        filter: &PixelFilter,
+        base: usize,
+        px: [u32; 2],
+        q: [i32; 2],
+        out: &mut [f32],
+    ) {
+        let (kx, ky) = (px[0] as i32 - q[0], px[1] as i32 - q[1]);
+        let n = self.pos.len();
+        let end = base + out.len();
+        if self.fx.is_empty() || kx.abs() > self.reach[0] || ky.abs() > self.reach[1] {
+            for (w, &(sxp, syp)) in out.iter_mut().zip(&self.pos[base..end]) {
+                *w = filter.weight(sxp - (px[0] as f32 + 0.5), syp - (px[1] as f32 + 0.5));
+            }
+            return;
+        }
+        let ox = (kx + self.reach[0]) as usize * n;
+        let oy = (ky + self.reach[1]) as usize * n;
+        let fx = &self.fx[ox + base..ox + end];
+        let fy = &self.fy[oy + base..oy + end];
+        for ((w, a), b) in out.iter_mut().zip(fx).zip(fy) {
+            *w = a * b;
+        }
+    }
+}
+
 /// The frame's film settings.
 pub(crate) struct Film {
     pub filter: PixelFilter,
@@ -80,13 +170,14 @@ impl Film {
         let [sw, sh] = region.size;
         let (sx1, sy1) = (sx0 + sw as i32, sy0 + sh as i32);
         let n_per = region.per_pixel;
-        let pos = region.pos;
         let bw = (px1 - px0) as usize;
         let bh = (py1 - py0) as usize;
         let mut color = Vec::with_capacity(bw * bh);
         let mut depth = Vec::with_capacity(bw * bh);
         let mut aov_px = vec![0.0f32; bw * bh * stride];
         let mut aov_acc = vec![0.0f32; stride];
+        let table = WeightTable::new(&self.filter, region);
+        let mut weights = vec![0.0f32; n_per];
         for y in py0..py1 {
             for x in px0..px1 {
                 let (cxp, cyp) = (x as f32 + 0.5, y as f32 + 0.5);
@@ -100,9 +191,8 @@ impl Film {
                 for qy in qy0..=qy1 {
                     for qx in qx0..=qx1 {
                         let base = (((qy - sy0) as usize) * sw + (qx - sx0) as usize) * n_per;
-                        for s in base..base + n_per {
-                            let (sxp, syp) = pos[s];
-                            let w = self.filter.weight(sxp - cxp, syp - cyp);
+                        table.weights(&self.filter, base, [x, y], [qx, qy], &mut weights);
+                        for (s, &w) in (base..base + n_per).zip(&weights) {
                             if w != 0.0 {
                                 wsum += w;
                                 for (a, v) in acc.iter_mut().zip(samples[s].rgba) {
@@ -158,17 +248,17 @@ impl Film {
         }
     }
 
-    /// Pastes the blocks into the crop window `crop` (x0 x1 y0 y1 in the full frame) and
-    /// exposes the colour: premultiplied RGBA, depth and the AOV records (`stride` floats per
-    /// pixel, not exposed), top row first.
-    pub fn print(
+    /// Pastes the blocks of one band of buckets into whole rows `y0..y1` of the crop window
+    /// whose columns are `x0..x1`, and exposes the colour: premultiplied RGBA, depth and the
+    /// AOV records (`stride` floats per pixel, not exposed), top row first.
+    pub fn print_rows(
         &self,
-        crop: [u32; 4],
+        [x0, x1]: [u32; 2],
+        [y0, y1]: [u32; 2],
         blocks: Vec<PixelBlock>,
         stride: usize,
-    ) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
-        let [cx0, cx1, cy0, cy1] = crop;
-        let (width, height) = (cx1 - cx0, cy1 - cy0);
+    ) -> PixelRows {
+        let (width, height) = (x1 - x0, y1 - y0);
         let mut rgba = vec![0.0f32; (width * height * 4) as usize];
         let mut z = vec![f32::MAX; (width * height) as usize];
         let mut aov = vec![0.0f32; (width * height) as usize * stride];
@@ -176,7 +266,7 @@ impl Film {
             let [bx0, bx1, by0, _] = b.rect;
             let bwid = bx1 - bx0;
             for (k, (pc, pz)) in b.rgba.iter().zip(&b.z).enumerate() {
-                let (x, y) = (bx0 - cx0 + k as u32 % bwid, by0 - cy0 + k as u32 / bwid);
+                let (x, y) = (bx0 - x0 + k as u32 % bwid, by0 - y0 + k as u32 / bwid);
                 let o = (y * width + x) as usize;
                 rgba[o * 4..o * 4 + 4].copy_from_slice(pc);
                 z[o] = *pz;
@@ -186,7 +276,15 @@ impl Film {
             }
         }
         self.expose(&mut rgba);
-        (rgba, z, aov)
+        PixelRows {
+            x0,
+            y0,
+            width,
+            height,
+            rgba,
+            z,
+            aov,
+        }
     }
 
     /// Exposure (RI Spec 3.2 `RiExposure`): c' = (gain·c)^(1/gamma) on colour, not alpha.
@@ -278,10 +376,10 @@ mod tests {
             z: vec![3.0],
             aov: Vec::new(),
         };
-        let (rgba, z, _) = film.print([0, 1, 0, 1], vec![block], 0);
-        for (a, b) in rgba.iter().zip([0.5, 1.0, 0.0, 0.5]) {
-            assert!((a - b).abs() < 1e-6, "{rgba:?}");
+        let rows = film.print_rows([0, 1], [0, 1], vec![block], 0);
+        for (a, b) in rows.rgba.iter().zip([0.5, 1.0, 0.0, 0.5]) {
+            assert!((a - b).abs() < 1e-6, "{:?}", rows.rgba);
         }
-        assert_eq!(z, vec![3.0]);
+        assert_eq!(rows.z, vec![3.0]);
     }
 }

@@ -2,13 +2,15 @@
 //! split, `refine.rs`), bucket layout (`bucket.rs`), per bucket dice and shade (`dice.rs`,
 //! through the [`GridShader`]), sample (`sample_buffer.rs`, `motion.rs`), composite
 //! (`visible.rs`, `csg.rs`) and develop (`film.rs`), repeated for the buckets a displacement
-//! overflow reaches (`displacement_bound.rs`); then the film prints the exposed image.
+//! overflow reaches (`displacement_bound.rs`); each band of buckets is printed into exposed rows
+//! that go straight to a [`RowSink`] (`row_sink.rs`), so the film holds one band at a time.
 use crate::aov::AovLayout;
 use crate::bucket::{render_bucket, BucketLayout, GridSlot};
 use crate::displacement_bound::render_until_bounded;
 use crate::film::Film;
 use crate::lens::Lens;
 use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
+use crate::row_sink::{FrameCollector, RowSink};
 use crate::sample_buffer::SampleSetup;
 use crate::shader::GridShader;
 use crate::{Rendered, Stats};
@@ -160,13 +162,31 @@ impl<'f> Hider<'f> {
         self.aov = layout;
     }
 
-    /// The bucket stage: every bucket's pieces diced, shaded by `shader`, sampled, composited
-    /// and developed, buckets in parallel; `progress` is called after each bucket with
-    /// (buckets done, bucket count).
+    /// The bucket stage into memory: [`Hider::render_to`] with a sink that keeps the whole
+    /// crop window, for callers that want the image (tests, the library API, farm tiles).
     pub fn render(
         self,
         shader: &dyn GridShader,
         progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    ) -> Rendered {
+        let mut frame = FrameCollector::new(self.frame.camera.crop, self.aov.stride);
+        let mut r = self.render_to(shader, progress, &mut frame);
+        r.rgba = frame.rgba;
+        r.z = frame.z;
+        r.aov = frame.aov;
+        r
+    }
+
+    /// The bucket stage: every bucket's pieces diced, shaded by `shader`, sampled, composited
+    /// and developed, one band of buckets after the other (the buckets of a band in
+    /// parallel); each finished band's rows go to `sink`. `progress` is called after each
+    /// bucket with (buckets done, bucket count). The [`Rendered`] returned has the frame's
+    /// size, statistics and warnings but empty pixel buffers: the pixels went to `sink`.
+    pub fn render_to(
+        self,
+        shader: &dyn GridShader,
+        progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+        sink: &mut dyn RowSink,
     ) -> Rendered {
         let Hider {
             frame,
@@ -198,39 +218,46 @@ impl<'f> Hider<'f> {
         let counters = Counters::default();
         let done = AtomicUsize::new(0);
         let total = AtomicUsize::new(0);
-        let (blocks, overflow_warnings) = render_until_bounded(
+        let [cx0, cx1, cy0, cy1] = cam.crop;
+        let overflow_warnings = render_until_bounded(
             frame,
             &refiner,
             &layout,
             &mut pieces,
-            |pieces: &[Piece], lists: &[Vec<usize>], todo: &[usize], grids: &[GridSlot]| {
-                total.fetch_add(todo.len(), Relaxed);
-                todo.par_iter()
-                    .map(|&b| {
-                        let block = render_bucket(
-                            frame,
-                            shader,
-                            pieces,
-                            grids,
-                            &lists[b],
-                            layout.rect(b),
-                            &film,
-                            &setup,
-                            lens.as_ref(),
-                            &counters,
-                            &aov,
-                        );
-                        let n = done.fetch_add(1, Relaxed) + 1;
-                        if let Some(p) = progress {
-                            p(n, total.load(Relaxed));
-                        }
-                        block
-                    })
-                    .collect()
+            |pieces: &[Piece], lists: &[Vec<usize>], grids: &[GridSlot]| {
+                total.fetch_add(layout.bucket_count(), Relaxed);
+                sink.begin_pass();
+                for by in 0..layout.band_count() {
+                    let (buckets, rows) = layout.band(by);
+                    let blocks = buckets
+                        .into_par_iter()
+                        .map(|b| {
+                            let block = render_bucket(
+                                frame,
+                                shader,
+                                pieces,
+                                grids,
+                                &lists[b],
+                                layout.rect(b),
+                                &film,
+                                &setup,
+                                lens.as_ref(),
+                                &counters,
+                                &aov,
+                            );
+                            let n = done.fetch_add(1, Relaxed) + 1;
+                            if let Some(p) = progress {
+                                p(n, total.load(Relaxed));
+                            }
+                            block
+                        })
+                        .collect();
+                    sink.rows(film.print_rows([cx0, cx1], rows, blocks, aov.stride));
+                }
             },
         );
         warnings.extend(overflow_warnings);
-        let (rgba, z, aov_pixels) = film.print(cam.crop, blocks, aov.stride);
+        let aov_image_bytes = ((cx1 - cx0) as u64) * ((cy1 - cy0) as u64) * aov.stride as u64 * 4;
         let stats = Stats {
             primitives: frame.primitives.len() as u64,
             pieces: pieces.len() as u64,
@@ -248,18 +275,17 @@ impl<'f> Hider<'f> {
             nonfinite: 0,
             aov_stride: aov.stride as u64,
             aov_bucket_peak_bytes: counters.aov_peak_bytes.load(Relaxed),
-            aov_image_bytes: (aov_pixels.len() * 4) as u64,
+            aov_image_bytes,
         };
-        let [cx0, cx1, cy0, cy1] = cam.crop;
         Rendered {
             x0: cx0,
             y0: cy0,
             width: cx1 - cx0,
             height: cy1 - cy0,
-            rgba,
-            z,
+            rgba: Vec::new(),
+            z: Vec::new(),
             aov_layout: aov,
-            aov: aov_pixels,
+            aov: Vec::new(),
             stats,
             warnings,
         }

@@ -19,6 +19,7 @@ mod hider;
 mod lens;
 mod motion;
 mod refine;
+mod row_sink;
 mod sample_buffer;
 pub mod sampling;
 mod shader;
@@ -28,6 +29,7 @@ pub use aov::{AovChannel, AovLayout};
 pub use film::PixelBlock;
 pub use filter::PixelFilter;
 pub use hider::Hider;
+pub use row_sink::{FrameCollector, PixelRows, RowSink};
 pub use shader::{GridShader, Shaded};
 
 use illume_ri::Diagnostic;

@@ -3,8 +3,9 @@
 //! hider, so negative lobes (catmull-rom, sinc) keep flat regions flat.
 //!
 //! The spec's `RiGaussianFilter` and `RiCatmullRomFilter` are radial: the Gaussian's widths
-//! scale its argument, Catmull–Rom is in pixel units (zero at radius 2). The other kernels are
-//! the separable products of the 1-D kernels of [`super::FilterKind::eval`].
+//! scale its argument (and, being a Gaussian, it is also the product of an x and a y factor,
+//! which is how it is evaluated), Catmull–Rom is in pixel units (zero at radius 2). The other
+//! kernels are the separable products of the 1-D kernels of [`super::FilterKind::eval`].
 use super::FilterKind;
 use std::sync::Arc;
 
@@ -81,6 +82,9 @@ impl PixelFilter {
     }
 
     pub fn weight(&self, dx: f32, dy: f32) -> f32 {
+        if self.is_separable() {
+            return self.factor_x(dx) * self.factor_y(dy);
+        }
         let (rx, ry) = self.radius();
         if dx.abs() > rx || dy.abs() > ry {
             return 0.0;
@@ -88,31 +92,51 @@ impl PixelFilter {
         if let Some(t) = &self.table {
             return t.lookup(0.5 + 0.5 * dx / rx, 0.5 + 0.5 * dy / ry);
         }
+        // RiCatmullRomFilter is radial in pixel units.
+        let r2 = dx * dx + dy * dy;
+        let r = r2.sqrt();
+        if r < 1.0 {
+            1.5 * r * r2 - 2.5 * r2 + 1.0
+        } else if r < 2.0 {
+            -0.5 * r * r2 + 2.5 * r2 - 4.0 * r + 2.0
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether the weight is the product `factor_x(dx) · factor_y(dy)`: every kernel but the
+    /// radial Catmull–Rom. The hider then evaluates each factor once per sample and pixel
+    /// column (row) instead of the 2-D weight once per sample and pixel (issue 21 part 3). A
+    /// program's tabulated function is looked up in 2-D.
+    pub fn is_separable(&self) -> bool {
+        self.table.is_none() && self.kind != FilterKind::CatmullRom
+    }
+
+    /// The horizontal factor of a separable weight at offset `dx` (zero outside the width).
+    pub fn factor_x(&self, dx: f32) -> f32 {
+        self.factor(dx, self.xwidth)
+    }
+
+    /// The vertical factor of a separable weight at offset `dy` (zero outside the width).
+    pub fn factor_y(&self, dy: f32) -> f32 {
+        self.factor(dy, self.ywidth)
+    }
+
+    fn factor(&self, d: f32, width: f32) -> f32 {
+        let r = width * 0.5;
+        if d.abs() > r {
+            return 0.0;
+        }
         match self.kind {
             FilterKind::Box => 1.0,
-            FilterKind::Triangle => (1.0 - dx.abs() / rx) * (1.0 - dy.abs() / ry),
-            // The spec's RiGaussianFilter: widths scale the argument so the filter reaches
-            // exp(-2) at its edge.
+            FilterKind::Triangle => 1.0 - d.abs() / r,
+            // The spec's RiGaussianFilter, exp(-2·((dx/rx)² + (dy/ry)²)) as the product of
+            // its two factors: widths scale the argument so it reaches exp(-2) at the edge.
             FilterKind::Gaussian => {
-                let x = dx / rx;
-                let y = dy / ry;
-                (-2.0 * (x * x + y * y)).exp()
+                let u = d / r;
+                (-2.0 * u * u).exp()
             }
-            // RiCatmullRomFilter is radial in pixel units.
-            FilterKind::CatmullRom => {
-                let r2 = dx * dx + dy * dy;
-                let r = r2.sqrt();
-                if r < 1.0 {
-                    1.5 * r * r2 - 2.5 * r2 + 1.0
-                } else if r < 2.0 {
-                    -0.5 * r * r2 + 2.5 * r2 - 4.0 * r + 2.0
-                } else {
-                    0.0
-                }
-            }
-            FilterKind::Sinc | FilterKind::Mitchell | FilterKind::Lanczos => {
-                self.kind.eval(dx, self.xwidth) * self.kind.eval(dy, self.ywidth)
-            }
+            _ => self.kind.eval(d, width),
         }
     }
 }

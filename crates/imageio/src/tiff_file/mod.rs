@@ -30,6 +30,7 @@ mod write;
 
 pub(crate) use read::read_tiff;
 pub(crate) use write::write_tiff;
+pub use write::TiffRows;
 
 const TAG_IMAGE_WIDTH: u16 = 256;
 const TAG_IMAGE_LENGTH: u16 = 257;

@@ -157,3 +157,88 @@ fn float64_samples_decode_to_their_values_without_overflow() {
         let _ = decode_tiff(Path::new("f64.tif"), &bytes[..len]);
     }
 }
+
+/// A test image whose samples vary per pixel and channel (some outside [0, 1]).
+fn gradient(width: u32, height: u32, channels: &[&str]) -> crate::Image {
+    let nc = channels.len();
+    crate::Image {
+        width,
+        height,
+        channels: channels.iter().map(|c| c.to_string()).collect(),
+        data: (0..(width * height) as usize * nc)
+            .map(|i| ((i * 37 % 101) as f32) / 90.0 - 0.05)
+            .collect(),
+    }
+}
+
+/// Rows `y0..y1` of `image`.
+fn rows_of(image: &crate::Image, y0: u32, y1: u32) -> crate::Image {
+    let per_row = image.width as usize * image.channels.len();
+    crate::Image {
+        width: image.width,
+        height: y1 - y0,
+        channels: image.channels.clone(),
+        data: image.data[y0 as usize * per_row..y1 as usize * per_row].to_vec(),
+    }
+}
+
+#[test]
+fn rows_streamed_in_any_bands_make_the_whole_image_file_byte_for_byte() {
+    let dir = std::env::temp_dir().join(format!("illume-tiffrows-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // 8-bit dithered colour (dither keyed on the crop origin plus the row), and all-float
+    // with depth; 700 px wide RGBA rows make 23-row strips, so bands cut strips anywhere.
+    for (channels, q) in [
+        (&["r", "g", "b", "a"][..], crate::Quantize::RGBA_DEFAULT),
+        (&["r", "g", "b", "z"][..], crate::Quantize::RGBA_DEFAULT),
+    ] {
+        let image = gradient(700, 61, channels);
+        let whole = dir.join("whole.tif");
+        super::write_tiff(&whole, &image, q, [5, 9]).unwrap();
+        for bands in [
+            &[61][..],
+            &[1, 60][..],
+            &[16, 16, 16, 13][..],
+            &[23, 23, 15][..],
+            &[7; 8][..],
+        ] {
+            let bands: Vec<u32> = bands
+                .iter()
+                .copied()
+                .chain([61 - bands.iter().sum::<u32>()])
+                .collect();
+            let streamed = dir.join("streamed.tif");
+            let names = image.channels.clone();
+            let mut w = super::TiffRows::create(&streamed, [700, 61], &names, q, [5, 9]).unwrap();
+            let mut y = 0;
+            for b in bands.iter().filter(|&&b| b > 0) {
+                w.write_rows(&rows_of(&image, y, y + b)).unwrap();
+                y += b;
+            }
+            w.finish().unwrap();
+            assert!(
+                std::fs::read(&whole).unwrap() == std::fs::read(&streamed).unwrap(),
+                "{channels:?} in bands {bands:?}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_unfinished_stream_leaves_no_file_and_too_many_rows_are_an_error() {
+    let dir = std::env::temp_dir().join(format!("illume-tiffrows-cut-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("cut.tif");
+    let image = gradient(8, 4, &["r", "g", "b"]);
+    let q = crate::Quantize::RGBA_DEFAULT;
+    let mut w = super::TiffRows::create(&path, [8, 4], &image.channels, q, [0, 0]).unwrap();
+    w.write_rows(&rows_of(&image, 0, 3)).unwrap();
+    assert!(w.write_rows(&image).is_err(), "7 rows accepted into 4");
+    drop(w);
+    let w = super::TiffRows::create(&path, [8, 4], &image.channels, q, [0, 0]).unwrap();
+    assert!(w.finish().is_err(), "a file without its rows was finished");
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,10 +1,11 @@
-//! Writing: one IFD, little-endian, Deflate-compressed strips (see the module documentation).
+//! Writing: one IFD, little-endian, Deflate-compressed strips (see the module documentation),
+//! whole images or rows as they arrive ([`TiffRows`], streaming output).
 
 use super::*;
-use crate::atomic_write::write_atomically;
+use crate::atomic_write::AtomicFile;
 use crate::quantize::{quantize_image, Samples};
-use crate::{format_error, io_error, Image, ImageError, Quantize};
-use std::io::Write;
+use crate::{format_error, io_error, Image, ImageError, Quantize, SampleDepth};
+use std::io::{Seek, SeekFrom, Write};
 use std::path::Path;
 
 /// One IFD entry before layout: tag, type, and its values as bytes (little-endian).
@@ -51,118 +52,242 @@ pub(crate) fn write_tiff(
     quantize: Quantize,
     origin: [u32; 2],
 ) -> Result<(), ImageError> {
-    // Depth is never quantized, and TIFF readers expect one sample format per file.
-    let quantize = if image.channel_index("z").is_some() {
-        Quantize::FLOAT
-    } else {
-        quantize
-    };
-    let samples = quantize_image(image, quantize, origin);
-    let (bits, format, bytes): (u16, u16, Vec<u8>) = match &samples {
-        Samples::U8(v) => (8, 1, v.clone()),
-        Samples::U16(v) => (16, 1, v.iter().flat_map(|s| s.to_le_bytes()).collect()),
-        Samples::F32(v) => (32, 3, v.iter().flat_map(|s| s.to_le_bytes()).collect()),
-    };
-    let nc = image.channels.len();
-    let row_bytes = image.width as usize * nc * bits as usize / 8;
-    let rows_per_strip = (65536 / row_bytes.max(1)).clamp(1, image.height as usize);
+    let mut rows = TiffRows::create(
+        path,
+        [image.width, image.height],
+        &image.channels,
+        quantize,
+        origin,
+    )?;
+    rows.write_rows(image)?;
+    rows.finish()
+}
 
-    // Compress each strip on its own so readers can decode strips independently; strips are
-    // independent, so they compress in parallel and the bytes do not depend on thread count.
-    use rayon::prelude::*;
-    let strips = bytes
-        .par_chunks(rows_per_strip * row_bytes)
-        .map(|rows| {
-            let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
-            z.write_all(rows)?;
-            z.finish()
-        })
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| io_error(path, e))?;
+/// A TIFF written as its rows arrive (streaming output): each strip is compressed and written
+/// as soon as its rows are in, and the IFD goes at the end, its offset patched into the header.
+/// The file is the one [`write_tiff`] writes for the whole image, byte for byte.
+pub struct TiffRows {
+    file: AtomicFile,
+    path: std::path::PathBuf,
+    size: [u32; 2],
+    channels: Vec<String>,
+    quantize: Quantize,
+    origin: [u32; 2],
+    bits: u16,
+    format: u16,
+    row_bytes: usize,
+    rows_per_strip: usize,
+    /// Quantized bytes of rows not yet in a strip.
+    pending: Vec<u8>,
+    /// Rows received so far.
+    rows: u32,
+    strip_offsets: Vec<u64>,
+    strip_counts: Vec<u32>,
+    offset: u64,
+}
 
-    let color = nc >= 3 && image.channels[..3] == ["r", "g", "b"];
-    let photometric_samples = if color { 3 } else { 1 };
-    let extra: Vec<u16> = image.channels[photometric_samples..]
-        .iter()
-        .map(|c| if c == "a" { 1 } else { 0 })
-        .collect();
-    let description = format!("{DESCRIPTION_PREFIX}{}", image.channels.join(","));
-
-    // Layout: header (8) · strips · IFD · out-of-line tag values.
-    let mut offset = 8u64;
-    let mut strip_offsets = Vec::with_capacity(strips.len());
-    for s in &strips {
-        strip_offsets.push(offset);
-        offset += s.len() as u64;
-    }
-    offset += offset & 1; // IFDs start on a word boundary
-    if offset > u32::MAX as u64 / 2 {
-        return Err(format_error(
-            path,
-            format!("expected a TIFF under 2 GiB, found {offset} bytes of pixels"),
-        ));
-    }
-    let strip_offsets: Vec<u32> = strip_offsets.iter().map(|&o| o as u32).collect();
-    let strip_counts: Vec<u32> = strips.iter().map(|s| s.len() as u32).collect();
-
-    let mut entries = vec![
-        longs(TAG_IMAGE_WIDTH, &[image.width]),
-        longs(TAG_IMAGE_LENGTH, &[image.height]),
-        shorts(TAG_BITS_PER_SAMPLE, &vec![bits; nc]),
-        shorts(TAG_COMPRESSION, &[8]),
-        shorts(TAG_PHOTOMETRIC, &[if color { 2 } else { 1 }]),
-        ascii(TAG_IMAGE_DESCRIPTION, &description),
-        longs(TAG_STRIP_OFFSETS, &strip_offsets),
-        shorts(TAG_SAMPLES_PER_PIXEL, &[nc as u16]),
-        longs(TAG_ROWS_PER_STRIP, &[rows_per_strip as u32]),
-        longs(TAG_STRIP_BYTE_COUNTS, &strip_counts),
-        shorts(TAG_PLANAR_CONFIG, &[1]),
-        ascii(TAG_SOFTWARE, "Illume"),
-        shorts(TAG_SAMPLE_FORMAT, &vec![format; nc]),
-    ];
-    if !extra.is_empty() {
-        entries.push(shorts(TAG_EXTRA_SAMPLES, &extra));
-    }
-    entries.sort_by_key(|e| e.tag);
-
-    let ifd_offset = offset as u32;
-    let ifd_size = 2 + 12 * entries.len() as u32 + 4;
-    let mut value_offset = ifd_offset + ifd_size;
-    let mut ifd = Vec::with_capacity(ifd_size as usize);
-    let mut values = Vec::new();
-    ifd.extend((entries.len() as u16).to_le_bytes());
-    for e in &entries {
-        ifd.extend(e.tag.to_le_bytes());
-        ifd.extend(e.kind.to_le_bytes());
-        ifd.extend(e.count.to_le_bytes());
-        if e.bytes.len() <= 4 {
-            let mut inline = [0u8; 4];
-            inline[..e.bytes.len()].copy_from_slice(&e.bytes);
-            ifd.extend(inline);
+impl TiffRows {
+    /// Starts a TIFF of `size` (width, height) pixels with these channels; `origin` is the
+    /// full-frame position of its top-left pixel (dither is keyed on it).
+    pub fn create(
+        path: &Path,
+        size: [u32; 2],
+        channels: &[String],
+        quantize: Quantize,
+        origin: [u32; 2],
+    ) -> Result<TiffRows, ImageError> {
+        // Depth is never quantized, and TIFF readers expect one sample format per file.
+        let quantize = if channels.iter().any(|c| c == "z") {
+            Quantize::FLOAT
         } else {
-            ifd.extend(value_offset.to_le_bytes());
-            values.extend(&e.bytes);
-            if values.len() % 2 == 1 {
-                values.push(0);
-            }
-            value_offset = ifd_offset + ifd_size + values.len() as u32;
-        }
+            quantize
+        };
+        let (bits, format) = match quantize.sample_depth() {
+            SampleDepth::U8 => (8u16, 1u16),
+            SampleDepth::U16 => (16, 1),
+            SampleDepth::Float => (32, 3),
+        };
+        let row_bytes = size[0] as usize * channels.len() * bits as usize / 8;
+        let rows_per_strip = (65536 / row_bytes.max(1)).clamp(1, (size[1] as usize).max(1));
+        let mut file = AtomicFile::create(path)?;
+        // The IFD offset is patched in by `finish`.
+        file.writer()
+            .write_all(b"II*\0\0\0\0\0")
+            .map_err(|e| io_error(path, e))?;
+        Ok(TiffRows {
+            file,
+            path: path.to_path_buf(),
+            size,
+            channels: channels.to_vec(),
+            quantize,
+            origin,
+            bits,
+            format,
+            row_bytes,
+            rows_per_strip,
+            pending: Vec::new(),
+            rows: 0,
+            strip_offsets: Vec::new(),
+            strip_counts: Vec::new(),
+            offset: 8,
+        })
     }
-    ifd.extend(0u32.to_le_bytes()); // no next IFD
 
-    write_atomically(path, |w| {
-        let io = |e| io_error(path, e);
-        w.write_all(b"II*\0").map_err(io)?;
-        w.write_all(&ifd_offset.to_le_bytes()).map_err(io)?;
-        let mut written = 8u64;
-        for s in &strips {
-            w.write_all(s).map_err(io)?;
-            written += s.len() as u64;
+    /// Appends the next rows (an image of the file's width and channels).
+    pub fn write_rows(&mut self, rows: &Image) -> Result<(), ImageError> {
+        let path = self.path.clone();
+        if rows.width != self.size[0]
+            || rows.channels != self.channels
+            || self.rows + rows.height > self.size[1]
+        {
+            return Err(format_error(
+                &path,
+                format!(
+                    "expected rows {} wide with channels {}, at most {} more; found {}x{} with {}",
+                    self.size[0],
+                    self.channels.join(","),
+                    self.size[1] - self.rows,
+                    rows.width,
+                    rows.height,
+                    rows.channels.join(",")
+                ),
+            ));
         }
-        if written < ifd_offset as u64 {
+        let origin = [self.origin[0], self.origin[1] + self.rows];
+        match quantize_image(rows, self.quantize, origin) {
+            Samples::U8(v) => self.pending.extend(v),
+            Samples::U16(v) => self.pending.extend(v.iter().flat_map(|s| s.to_le_bytes())),
+            Samples::F32(v) => self.pending.extend(v.iter().flat_map(|s| s.to_le_bytes())),
+        }
+        self.rows += rows.height;
+        let strip = self.rows_per_strip * self.row_bytes;
+        let full = if self.rows == self.size[1] {
+            self.pending.len()
+        } else {
+            self.pending.len() / strip.max(1) * strip
+        };
+        self.write_strips(full)
+    }
+
+    /// Compresses and writes the first `n` pending bytes (whole strips, or the last rows).
+    /// Strips are compressed on their own (readers decode them independently) and in parallel;
+    /// the bytes do not depend on the thread count.
+    fn write_strips(&mut self, n: usize) -> Result<(), ImageError> {
+        if n == 0 {
+            return Ok(());
+        }
+        let path = self.path.clone();
+        use rayon::prelude::*;
+        let strips = self.pending[..n]
+            .par_chunks(self.rows_per_strip * self.row_bytes)
+            .map(|rows| {
+                let mut z =
+                    flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+                z.write_all(rows)?;
+                z.finish()
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| io_error(&path, e))?;
+        self.pending.drain(..n);
+        for s in &strips {
+            self.strip_offsets.push(self.offset);
+            self.strip_counts.push(s.len() as u32);
+            self.offset += s.len() as u64;
+            self.file
+                .writer()
+                .write_all(s)
+                .map_err(|e| io_error(&path, e))?;
+        }
+        if self.offset > u32::MAX as u64 / 2 {
+            return Err(format_error(
+                &path,
+                format!(
+                    "expected a TIFF under 2 GiB, found {} bytes of pixels",
+                    self.offset
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Writes the IFD and renames the file into place; every row must have arrived.
+    pub fn finish(mut self) -> Result<(), ImageError> {
+        let path = self.path.clone();
+        if self.rows != self.size[1] {
+            return Err(format_error(
+                &path,
+                format!("expected {} rows, found {}", self.size[1], self.rows),
+            ));
+        }
+        let (ifd_offset, ifd, values) = self.directory();
+        let io = |e| io_error(&path, e);
+        let w = self.file.writer();
+        if self.offset < ifd_offset as u64 {
             w.write_all(&[0]).map_err(io)?;
         }
         w.write_all(&ifd).map_err(io)?;
-        w.write_all(&values).map_err(io)
-    })
+        w.write_all(&values).map_err(io)?;
+        w.seek(SeekFrom::Start(4)).map_err(io)?;
+        w.write_all(&ifd_offset.to_le_bytes()).map_err(io)?;
+        self.file.commit()
+    }
+
+    /// The IFD's offset, its bytes and its out-of-line values.
+    fn directory(&self) -> (u32, Vec<u8>, Vec<u8>) {
+        let (nc, bits, format) = (self.channels.len(), self.bits, self.format);
+        let color = nc >= 3 && self.channels[..3] == ["r", "g", "b"];
+        let photometric_samples = if color { 3 } else { 1 };
+        let extra: Vec<u16> = self.channels[photometric_samples.min(nc)..]
+            .iter()
+            .map(|c| if c == "a" { 1 } else { 0 })
+            .collect();
+        let description = format!("{DESCRIPTION_PREFIX}{}", self.channels.join(","));
+        let offset = self.offset + (self.offset & 1); // IFDs start on a word boundary
+        let strip_offsets: Vec<u32> = self.strip_offsets.iter().map(|&o| o as u32).collect();
+        let mut entries = vec![
+            longs(TAG_IMAGE_WIDTH, &[self.size[0]]),
+            longs(TAG_IMAGE_LENGTH, &[self.size[1]]),
+            shorts(TAG_BITS_PER_SAMPLE, &vec![bits; nc]),
+            shorts(TAG_COMPRESSION, &[8]),
+            shorts(TAG_PHOTOMETRIC, &[if color { 2 } else { 1 }]),
+            ascii(TAG_IMAGE_DESCRIPTION, &description),
+            longs(TAG_STRIP_OFFSETS, &strip_offsets),
+            shorts(TAG_SAMPLES_PER_PIXEL, &[nc as u16]),
+            longs(TAG_ROWS_PER_STRIP, &[self.rows_per_strip as u32]),
+            longs(TAG_STRIP_BYTE_COUNTS, &self.strip_counts),
+            shorts(TAG_PLANAR_CONFIG, &[1]),
+            ascii(TAG_SOFTWARE, "Illume"),
+            shorts(TAG_SAMPLE_FORMAT, &vec![format; nc]),
+        ];
+        if !extra.is_empty() {
+            entries.push(shorts(TAG_EXTRA_SAMPLES, &extra));
+        }
+        entries.sort_by_key(|e| e.tag);
+
+        let ifd_offset = offset as u32;
+        let ifd_size = 2 + 12 * entries.len() as u32 + 4;
+        let mut value_offset = ifd_offset + ifd_size;
+        let mut ifd = Vec::with_capacity(ifd_size as usize);
+        let mut values = Vec::new();
+        ifd.extend((entries.len() as u16).to_le_bytes());
+        for e in &entries {
+            ifd.extend(e.tag.to_le_bytes());
+            ifd.extend(e.kind.to_le_bytes());
+            ifd.extend(e.count.to_le_bytes());
+            if e.bytes.len() <= 4 {
+                let mut inline = [0u8; 4];
+                inline[..e.bytes.len()].copy_from_slice(&e.bytes);
+                ifd.extend(inline);
+            } else {
+                ifd.extend(value_offset.to_le_bytes());
+                values.extend(&e.bytes);
+                if values.len() % 2 == 1 {
+                    values.push(0);
+                }
+                value_offset = ifd_offset + ifd_size + values.len() as u32;
+            }
+        }
+        ifd.extend(0u32.to_le_bytes()); // no next IFD
+        (ifd_offset, ifd, values)
+    }
 }

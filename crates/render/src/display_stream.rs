@@ -1,0 +1,168 @@
+//! Streaming output (issue 21): the frame's displays fed row band by row band while the hider
+//! renders, so memory does not grow with the frame. A TIFF display writes each strip as soon
+//! as its rows arrive ([`TiffRows`]). The other kinds need the whole frame at the end (PNG's
+//! one zlib stream as `write_displays` makes it, OpenEXR, zfile, shadow maps, framebuffer
+//! pictures): they share one whole-frame buffer, kept only when such a display exists.
+//! Every file is the one [`crate::write_displays`] writes from the whole image, byte for byte.
+use crate::display::{plan_displays, DisplayError, DisplayPlan, WrittenDisplay};
+use crate::Rendered;
+use illume_imageio::TiffRows;
+use illume_reyes::{AovLayout, FrameCollector, PixelRows, RowSink};
+use illume_ri::Frame;
+
+/// One display being written.
+enum Output {
+    /// Rows go to the file as they arrive (`None` before the first pass).
+    Rows(Option<Box<TiffRows>>),
+    /// Written from the whole-frame buffer at the end.
+    Whole,
+}
+
+/// The frame's displays as a [`RowSink`]; [`DisplayStream::finish`] closes them.
+pub struct DisplayStream<'f> {
+    frame: &'f Frame,
+    crop: [u32; 4],
+    layout: AovLayout,
+    displays: Vec<Result<(DisplayPlan, Output), DisplayError>>,
+    /// The whole crop window, when some display needs it.
+    whole: Option<FrameCollector>,
+}
+
+impl<'f> DisplayStream<'f> {
+    /// The displays of `frame`, for the crop window rendered with these AOVs.
+    pub fn new(frame: &'f Frame, layout: &AovLayout) -> DisplayStream<'f> {
+        let crop = frame.camera.crop;
+        let displays: Vec<_> = plan_displays(frame, layout)
+            .into_iter()
+            .map(|p| {
+                p.map(|plan| {
+                    let out = if plan.streams() {
+                        Output::Rows(None)
+                    } else {
+                        Output::Whole
+                    };
+                    (plan, out)
+                })
+            })
+            .collect();
+        let whole = displays
+            .iter()
+            .any(|d| matches!(d, Ok((_, Output::Whole))))
+            .then(|| FrameCollector::new(crop, layout.stride));
+        DisplayStream {
+            frame,
+            crop,
+            layout: layout.clone(),
+            displays,
+            whole,
+        }
+    }
+
+    /// Finishes every display, in the frame's order: streamed files are completed and renamed
+    /// into place, the others written from the whole-frame buffer.
+    pub fn finish(self) -> Vec<Result<WrittenDisplay, DisplayError>> {
+        let [cx0, cx1, cy0, cy1] = self.crop;
+        let whole = self.whole.map(|w| Rendered {
+            x0: cx0,
+            y0: cy0,
+            width: cx1 - cx0,
+            height: cy1 - cy0,
+            rgba: w.rgba,
+            z: w.z,
+            aov_layout: self.layout.clone(),
+            aov: w.aov,
+            stats: Default::default(),
+            warnings: Vec::new(),
+        });
+        let frame = self.frame;
+        self.displays
+            .into_iter()
+            .map(|d| {
+                let (plan, out) = d?;
+                match (out, &whole) {
+                    (Output::Rows(Some(rows)), _) => {
+                        rows.finish()?;
+                        Ok(plan.written())
+                    }
+                    (Output::Whole, Some(r)) => plan.write(frame, r),
+                    _ => Err(DisplayError::Channels {
+                        name: plan.name.clone(),
+                        message: "no rows were rendered".into(),
+                    }),
+                }
+            })
+            .collect()
+    }
+}
+
+impl RowSink for DisplayStream<'_> {
+    fn begin_pass(&mut self) {
+        let [cx0, cx1, cy0, cy1] = self.crop;
+        for d in &mut self.displays {
+            let Ok((plan, Output::Rows(rows))) = d else {
+                continue;
+            };
+            // A pass that starts over drops (and so removes) the previous pass's file first.
+            *rows = None;
+            let channels = match plan.image(&band(&self.layout, PixelRows::default())) {
+                Ok(image) => image.channels,
+                Err(e) => {
+                    *d = Err(e);
+                    continue;
+                }
+            };
+            match TiffRows::create(
+                &plan.path,
+                [cx1 - cx0, cy1 - cy0],
+                &channels,
+                plan.quantize,
+                [cx0, cy0],
+            ) {
+                Ok(r) => *rows = Some(Box::new(r)),
+                Err(e) => *d = Err(e.into()),
+            }
+        }
+    }
+
+    fn rows(&mut self, rows: PixelRows) {
+        let r = band(&self.layout, rows);
+        for d in &mut self.displays {
+            let Ok((plan, Output::Rows(Some(out)))) = d else {
+                continue;
+            };
+            if let Err(e) = plan
+                .image(&r)
+                .and_then(|image| out.write_rows(&image).map_err(DisplayError::from))
+            {
+                *d = Err(e);
+            }
+        }
+        if let Some(whole) = &mut self.whole {
+            whole.rows(PixelRows {
+                x0: r.x0,
+                y0: r.y0,
+                width: r.width,
+                height: r.height,
+                rgba: r.rgba,
+                z: r.z,
+                aov: r.aov,
+            });
+        }
+    }
+}
+
+/// Rows as a [`Rendered`] image, for the display code that builds a display's channels.
+fn band(layout: &AovLayout, rows: PixelRows) -> Rendered {
+    Rendered {
+        x0: rows.x0,
+        y0: rows.y0,
+        width: rows.width,
+        height: rows.height,
+        rgba: rows.rgba,
+        z: rows.z,
+        aov_layout: layout.clone(),
+        aov: rows.aov,
+        stats: Default::default(),
+        warnings: Vec::new(),
+    }
+}

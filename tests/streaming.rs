@@ -1,0 +1,107 @@
+//! Streaming output (issue 21): `render_to_displays` writes each display while the frame
+//! renders (TIFF strip by strip, the other kinds from one whole-frame buffer). Every file must
+//! equal, byte for byte, the file `render` then `write_displays` writes from the whole image:
+//! the streamed path may change when memory is used, never what is written.
+use illume_render::{render, render_to_displays, write_displays, RenderSettings};
+use std::path::Path;
+mod support;
+
+/// A lit scene with one display per kind and mode family, its files in `dir`.
+fn scene(dir: &Path, extra: &str) -> String {
+    let d = |name: &str| dir.join(name).display().to_string();
+    format!(
+        "Format 150 110 1\nPixelSamples 2 2\nOption \"limits\" \"bucketsize\" [16 8]\n\
+         Display \"{}\" \"tiff\" \"rgba\"\nDisplay \"+{}\" \"tiff\" \"z\"\n\
+         Display \"+{}\" \"tiff\" \"rgbaz\"\nDisplay \"+{}\" \"tiff\" \"Cs\"\n\
+         Display \"+{}\" \"png\" \"rgba\"\nDisplay \"+{}\" \"openexr\" \"rgba,N\"\n\
+         Display \"+{}\" \"zfile\" \"z\"\n{extra}\n\
+         Projection \"perspective\" \"fov\" [40]\nWorldBegin\n\
+         LightSource \"distantlight\" 1 \"from\" [0 1 -1] \"to\" [0 0 0]\n\
+         Surface \"plastic\"\nColor [0.8 0.4 0.2]\nTranslate 0 0 5\nSphere 1 -1 1 360\n\
+         Translate 0.8 0.3 1\nColor [0.2 0.5 0.9]\nSphere 0.8 -0.8 0.8 360\nWorldEnd\n",
+        d("a.tif"),
+        d("z.tif"),
+        d("rgbaz.tif"),
+        d("cs.tif"),
+        d("a.png"),
+        d("n.exr"),
+        d("d.zfile"),
+    )
+}
+
+/// Writes `rib`'s frame both ways (into `dir/whole` and `dir/streamed`) and compares every file.
+fn same_files_both_ways(dir: &Path, rib: impl Fn(&Path) -> String, crop: Option<[f32; 4]>) {
+    let (whole, streamed) = (dir.join("whole"), dir.join("streamed"));
+    for d in [&whole, &streamed] {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    let frame = &support::frames(&rib(&whole), crop)[0];
+    let r = render(frame, &RenderSettings::default());
+    for w in write_displays(frame, &r) {
+        w.unwrap();
+    }
+    let frame = &support::frames(&rib(&streamed), crop)[0];
+    let (report, written) = render_to_displays(frame, &RenderSettings::default());
+    assert_eq!(
+        report.warnings.len(),
+        r.warnings.len(),
+        "{:?}",
+        report.warnings
+    );
+    assert_eq!(written.len(), 7);
+    for w in written {
+        let w = w.unwrap();
+        let name = w.path.file_name().unwrap().to_owned();
+        let a = std::fs::read(whole.join(&name)).unwrap();
+        let b = std::fs::read(&w.path).unwrap();
+        assert!(
+            a == b,
+            "{name:?} differs ({} vs {} bytes)",
+            a.len(),
+            b.len()
+        );
+    }
+    // Nothing left under a temporary name.
+    for entry in std::fs::read_dir(&streamed).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        assert!(!name.contains("illume-tmp"), "left behind: {name}");
+    }
+}
+
+#[test]
+fn streamed_displays_equal_the_whole_image_files_byte_for_byte() {
+    let dir = std::env::temp_dir().join(format!("illume-stream-{}", std::process::id()));
+    same_files_both_ways(&dir.join("full"), |d| scene(d, ""), None);
+    // A crop window: rows start below the frame's top, dither is keyed on full-frame pixels.
+    same_files_both_ways(
+        &dir.join("crop"),
+        |d| scene(d, "Exposure 1.5 2.2"),
+        Some([0.13, 0.71, 0.21, 0.9]),
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A displacement larger than its bound makes the hider render the frame again; the streamed
+/// files of the first pass are dropped and the second pass's rows written instead.
+#[test]
+fn a_pass_that_starts_over_streams_the_final_image() {
+    let dir = std::env::temp_dir().join(format!("illume-stream-disp-{}", std::process::id()));
+    let rib = |d: &Path| {
+        scene(d, "").replace(
+            "Surface \"plastic\"",
+            "Surface \"plastic\"\nAttribute \"displacementbound\" \"sphere\" [0.01]\n\
+             Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.3]",
+        )
+    };
+    let frame = &support::frames(&rib(&dir.join("probe")), None)[0];
+    let r = render(frame, &RenderSettings::default());
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.message.contains("re-rendering")),
+        "the scene must overflow its bound: {:?}",
+        r.warnings
+    );
+    same_files_both_ways(&dir, rib, None);
+    let _ = std::fs::remove_dir_all(&dir);
+}
