@@ -22,6 +22,7 @@ mod refine;
 mod sample_buffer;
 pub mod sampling;
 mod shader;
+mod time_strata;
 mod visible;
 
 pub use aov::{AovChannel, AovLayout};
