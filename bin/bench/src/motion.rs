@@ -93,8 +93,7 @@ pub fn run(
     let mut rows = Vec::new();
     for (name, file) in SCENES {
         let path = rib_dir.join(file);
-        let rib =
-            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let rib = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         for &scale in scales {
             let mut cost = [Cost::default(); 2];
             let mut pixels = 0;

@@ -14,7 +14,7 @@
 use crate::dice::ShadedGrid;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
-use crate::time_strata::{stratum_count, stratum_samples, stratum_times};
+use crate::time_strata::{stratum_count, stratum_cuts, stratum_samples, time_slack};
 use glam::{DVec3, Vec3};
 use illume_ri::motion::segment;
 use illume_ri::Camera;
@@ -36,36 +36,69 @@ impl GridMotion {
     }
 }
 
-/// The raster box `[x0, x1, y0, y1]` of micropolygon `quad` over the times `[ta, tb]`. A
-/// vertex moves linearly in camera space between keys, hence along a straight raster line (a
-/// projective map keeps lines), so the box of its positions at `ta`, `tb` and every key
-/// between holds its whole path there. `None` when a position does not project.
-fn interval_box(
+/// The raster boxes `[x0, x1, y0, y1]` of micropolygon `quad` between consecutive `cuts`
+/// (times). A vertex moves linearly in camera space between keys, hence along a straight
+/// raster line (a projective map keeps lines), so the box of its positions at a stratum's two
+/// cuts and at every key between holds its whole path there. Each position is projected once
+/// and shared by the two strata it ends. `None` when a position does not project.
+fn strata_boxes(
     m: &GridMotion,
     quad: &[usize; 4],
-    [ta, tb]: [f64; 2],
+    cuts: &[f64],
     project: &impl Fn(DVec3) -> Option<DVec3>,
-) -> Option<[f64; 4]> {
-    let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-    let mut add = |p: DVec3| -> Option<()> {
-        let q = project(p).filter(|q| q.is_finite())?;
-        b = [b[0].min(q.x), b[1].max(q.x), b[2].min(q.y), b[3].max(q.y)];
-        Some(())
-    };
-    for t in [ta, tb] {
+    boxes: &mut Vec<[f64; 4]>,
+) -> Option<()> {
+    let at = |p: DVec3| project(p).filter(|q| q.is_finite());
+    let corners = |t: f64| -> Option<[DVec3; 4]> {
         let seg = segment(&m.times, t);
-        for &k in quad {
-            add(m.at(k, seg))?;
+        let mut v = [DVec3::ZERO; 4];
+        for (q, &k) in v.iter_mut().zip(quad) {
+            *q = at(m.at(k, seg))?;
         }
-    }
-    for (key, &t) in m.keys.iter().zip(&m.times) {
-        if t > ta && t < tb {
-            for &k in quad {
-                add(key[k].as_dvec3())?;
+        Some(v)
+    };
+    let mut start = corners(*cuts.first()?)?;
+    boxes.clear();
+    for w in cuts.windows(2) {
+        let end = corners(w[1])?;
+        let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
+        let mut add = |q: DVec3| b = [b[0].min(q.x), b[1].max(q.x), b[2].min(q.y), b[3].max(q.y)];
+        start.iter().chain(&end).for_each(|&q| add(q));
+        for (key, &t) in m.keys.iter().zip(&m.times) {
+            if t > w[0] && t < w[1] {
+                for &k in quad {
+                    add(at(key[k].as_dvec3())?);
+                }
             }
         }
+        boxes.push(b);
+        start = end;
     }
-    Some(b)
+    Some(())
+}
+
+/// A bound on how far (raster pixels, either axis) a vertex of a micropolygon with raster box
+/// `[x0, x1, y0, y1]` and depths `[z0, z1]` over every key moves in `dt` of time. Between keys
+/// a raster coordinate `α·X/Z + β` of a point moving linearly in camera space has the
+/// derivative `(x₁ − x₀)·Z₀Z₁/Z(t)²` per unit of the key span, at most the key box's extent
+/// times `z1/z0` (perspective) over the shortest key span. Infinite when keys share a time.
+fn drift(
+    m: &GridMotion,
+    [x0, x1, y0, y1]: [f64; 4],
+    [z0, z1]: [f64; 2],
+    persp: bool,
+    dt: f64,
+) -> f64 {
+    let span = m
+        .times
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::MAX, f64::min);
+    if span <= 0.0 {
+        return f64::INFINITY;
+    }
+    let depth = if persp { z1 / z0 } else { 1.0 };
+    (x1 - x0).max(y1 - y0) * depth / span * dt
 }
 
 /// How far (raster pixels) micropolygon `quad` moves over the keys beyond its own size at the
@@ -106,9 +139,11 @@ pub(crate) fn sample_moving_grid(
         cam.raster_from_camera(p)
     };
     let mut hits = 0;
+    let mut scratch = Scratch::default();
     for j in 0..g.nv - 1 {
         for i in 0..g.nu - 1 {
-            hits += sample_moving_micropolygon(g, m, id, [i, j], &project, persp, lens, out);
+            let s = &mut scratch;
+            hits += sample_moving_micropolygon(g, m, id, [i, j], &project, persp, lens, out, s);
         }
     }
     hits
@@ -127,6 +162,7 @@ fn sample_moving_micropolygon(
     persp: bool,
     lens: Option<&Lens>,
     out: &mut SampleBuffer,
+    scratch: &mut Scratch,
 ) -> u64 {
     let nu = g.nu;
     let mp = j * (nu - 1) + i;
@@ -148,14 +184,7 @@ fn sample_moving_micropolygon(
         }
     }
     let key_box = [x0, x1, y0, y1];
-    let n = out.n_per;
-    let shutter = out.shutter.map(f64::from);
-    let strata = if m.keys.len() > 1 && shutter[1] > shutter[0] {
-        stratum_count(sweep(m, &quad, key_box, project), n)
-    } else {
-        1
-    };
-    let mp = MovingMicropolygon {
+    let mut mp = MovingMicropolygon {
         g,
         m,
         quad,
@@ -164,23 +193,58 @@ fn sample_moving_micropolygon(
         z: [z0, z1],
         persp,
         lens,
+        pad: 0.0,
     };
+    // Most micropolygons of a grid that several buckets share miss this one.
+    if mp.pixels(key_box, out).is_none() {
+        return 0;
+    }
+    let n = out.n_per;
+    let shutter = out.shutter.map(f64::from);
+    let mut strata = if m.keys.len() > 1 && shutter[1] > shutter[0] {
+        stratum_count(sweep(m, &quad, key_box, project), n)
+    } else {
+        1
+    };
+    // A sample time may round past its stratum's cuts by `time_slack`: the boxes grow by the
+    // motion over that time (a tiny fraction of a pixel), or are not cut when it is unbounded.
+    let drift = drift(m, key_box, [z0, z1], persp, time_slack(shutter));
+    if !(drift < 0.25) {
+        strata = 1;
+    }
+    let boxes = &mut scratch.boxes;
+    if strata == 1 {
+        boxes.clear();
+        boxes.push(key_box);
+    } else {
+        mp.pad = drift;
+        let cuts = &mut scratch.cuts;
+        if cuts.len() <= strata {
+            cuts.resize(strata + 1, Vec::new());
+        }
+        if cuts[strata].is_empty() {
+            cuts[strata] = stratum_cuts(strata, n, shutter);
+        }
+        if strata_boxes(m, &quad, &cuts[strata], project, boxes).is_none() {
+            return 0;
+        }
+    }
     let mut hits = 0;
-    for k in 0..strata {
-        let b = if strata == 1 {
-            key_box
-        } else {
-            match interval_box(m, &quad, stratum_times(k, strata, n, shutter), project) {
-                Some(b) => b,
-                None => return hits,
-            }
-        };
+    for (k, &b) in boxes.iter().enumerate() {
         match mp.sample_stratum(b, stratum_samples(k, strata, n), project, out) {
             Some(h) => hits += h,
             None => return hits,
         }
     }
     hits
+}
+
+/// Buffers a grid's micropolygons reuse: the shutter cuts per stratum count (filled when
+/// first needed) and one micropolygon's stratum boxes.
+#[derive(Default)]
+struct Scratch {
+    cuts: Vec<Vec<f64>>,
+    boxes: Vec<[f64; 4]>,
 }
 
 /// One moving micropolygon and what testing a sample against it needs.
@@ -196,9 +260,27 @@ struct MovingMicropolygon<'a> {
     z: [f64; 2],
     persp: bool,
     lens: Option<&'a Lens>,
+    /// Extra growth of a stratum's box for the rounding of sample times (pixels).
+    pad: f64,
 }
 
 impl MovingMicropolygon<'_> {
+    /// The buffer's pixels `[x0, x1, y0, y1]` (inclusive, relative to its origin) that the
+    /// raster box `b` reaches, grown by the edge reach, the circle of confusion and `pad`;
+    /// `None` when it reaches none.
+    fn pixels(&self, b: [f64; 4], out: &SampleBuffer) -> Option<[i32; 4]> {
+        let grow = self.reach.iter().copied().fold(0.0, f64::max) + self.pad;
+        let [z0, z1] = self.z;
+        let (gx, gy) = self.lens.map_or((0.0, 0.0), |l| l.blur_radius(z0, z1));
+        let [ox, oy] = out.origin;
+        let [sw, sh] = out.size;
+        let qx0 = ((b[0] - grow - gx).floor() as i32 - ox).max(0);
+        let qx1 = ((b[1] + grow + gx).floor() as i32 - ox).min(sw as i32 - 1);
+        let qy0 = ((b[2] - grow - gy).floor() as i32 - oy).max(0);
+        let qy1 = ((b[3] + grow + gy).floor() as i32 - oy).min(sh as i32 - 1);
+        (qx0 <= qx1 && qy0 <= qy1).then_some([qx0, qx1, qy0, qy1])
+    }
+
     /// Tests the samples at time-ordered positions `run` of every pixel the raster box `b`
     /// (the pinhole path over those samples' times) reaches, grown by the edge reach and the
     /// circle of confusion. `None` when a position fails to project (the micropolygon is
@@ -213,17 +295,12 @@ impl MovingMicropolygon<'_> {
         if run.is_empty() {
             return Some(0);
         }
-        let [bottom, right, top, left] = self.reach;
-        let grow = bottom.max(top).max(left).max(right);
+        let Some([qx0, qx1, qy0, qy1]) = self.pixels(b, out) else {
+            return Some(0);
+        };
         let [z0, z1] = self.z;
-        let (gx, gy) = self.lens.map_or((0.0, 0.0), |l| l.blur_radius(z0, z1));
-        let [ox, oy] = out.origin;
-        let [sw, sh] = out.size;
-        let qx0 = ((b[0] - grow - gx).floor() as i32 - ox).max(0);
-        let qx1 = ((b[1] + grow + gx).floor() as i32 - ox).min(sw as i32 - 1);
-        let qy0 = ((b[2] - grow - gy).floor() as i32 - oy).max(0);
-        let qy1 = ((b[3] + grow + gy).floor() as i32 - oy).min(sh as i32 - 1);
-        let pad = grow + 1e-6;
+        let sw = out.size[0];
+        let pad = self.reach.iter().copied().fold(0.0, f64::max) + self.pad + 1e-6;
         let mut hits = 0;
         for qy in qy0..=qy1 {
             for qx in qx0..=qx1 {

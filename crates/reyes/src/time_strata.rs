@@ -58,18 +58,20 @@ pub(crate) fn stratum_samples(k: usize, strata: usize, n: usize) -> Range<usize>
     (k * n).div_ceil(strata)..((k + 1) * n).div_ceil(strata)
 }
 
-/// The times `[ta, tb]` that hold every sample of stratum `k` of `strata` (`n` per pixel) over
-/// the shutter `[open, close]`: the shutter slices of its positions, widened by the rounding
-/// of the f32 sample times (a few ulps of the shutter's magnitude) so the bound is
-/// conservative.
-pub(crate) fn stratum_times(k: usize, strata: usize, n: usize, [open, close]: [f64; 2]) -> [f64; 2] {
-    let r = stratum_samples(k, strata, n);
+/// The `strata + 1` times that cut the shutter `[open, close]` into the strata of `n`
+/// samples per pixel: stratum `k`'s samples have times in `[cuts[k], cuts[k+1]]`, give or take
+/// [`time_slack`].
+pub(crate) fn stratum_cuts(strata: usize, n: usize, [open, close]: [f64; 2]) -> Vec<f64> {
     let dur = close - open;
-    let slack = 4.0 * f64::from(f32::EPSILON) * (dur.abs() + open.abs().max(close.abs()));
-    [
-        open + dur * r.start as f64 / n as f64 - slack,
-        open + dur * r.end as f64 / n as f64 + slack,
-    ]
+    (0..=strata)
+        .map(|k| open + dur * (k * n).div_ceil(strata) as f64 / n as f64)
+        .collect()
+}
+
+/// How far an f32 sample time may fall outside its stratum's cuts through rounding (a few
+/// ulps of the shutter's magnitude; the sample times are `open + (close − open)·u` in f32).
+pub(crate) fn time_slack([open, close]: [f64; 2]) -> f64 {
+    4.0 * f64::from(f32::EPSILON) * ((close - open).abs() + open.abs().max(close.abs()))
 }
 
 #[cfg(test)]
@@ -101,7 +103,10 @@ mod tests {
                             for k in 0..strata {
                                 let r = stratum_samples(k, strata, n);
                                 covered += r.len();
-                                let [ta, tb] = stratum_times(k, strata, n, shutter.map(f64::from));
+                                let sh = shutter.map(f64::from);
+                                let cuts = stratum_cuts(strata, n, sh);
+                                let slack = time_slack(sh);
+                                let (ta, tb) = (cuts[k] - slack, cuts[k + 1] + slack);
                                 for ts in &timed[r] {
                                     let t = f64::from(ts.t);
                                     assert!(
