@@ -209,7 +209,7 @@ fn sample_moving_micropolygon(
     // A sample time may round past its stratum's cuts by `time_slack`: the boxes grow by the
     // motion over that time (a tiny fraction of a pixel), or are not cut when it is unbounded.
     let drift = drift(m, key_box, [z0, z1], persp, time_slack(shutter));
-    if !(drift < 0.25) {
+    if drift.is_nan() || drift >= 0.25 {
         strata = 1;
     }
     let boxes = &mut scratch.boxes;
