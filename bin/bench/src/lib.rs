@@ -10,6 +10,7 @@ pub mod font;
 pub mod knob;
 pub mod measure;
 pub mod metrics;
+pub mod motion;
 pub mod pareto;
 pub mod plot;
 pub mod scene;

@@ -42,6 +42,13 @@ struct Args {
     /// Threads of every point except the thread-count sweep (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
+    /// Motion blur against the still frame: render rib/bench's blur scenes shutter open and
+    /// closed at each of --scales × their Format and print the times (issue 21), no sweep.
+    #[arg(long)]
+    motion: bool,
+    /// Image scales of --motion (default 1,2,4).
+    #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
+    scales: Vec<u32>,
     /// Redraw speed_error.png and speed_error.md from this speed_error.csv, measuring nothing.
     #[arg(long)]
     from_csv: Option<PathBuf>,
@@ -218,6 +225,23 @@ fn main() -> ExitCode {
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if args.motion {
+        let repeat = args.repeat.unwrap_or(1);
+        let rows = bench::motion::run(&render, &rib_dir, &scratch, &args.scales, threads, repeat);
+        if own_scratch {
+            let _ = std::fs::remove_dir_all(&scratch);
+        }
+        return match rows {
+            Ok(rows) => {
+                println!("{}", bench::motion::table(&rows));
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("bench: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     let defaults = Settings::defaults(256, threads);
     let cfg = SweepConfig {
         render: &render,

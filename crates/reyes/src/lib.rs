@@ -23,6 +23,7 @@ mod row_sink;
 mod sample_buffer;
 pub mod sampling;
 mod shader;
+mod time_strata;
 mod visible;
 
 pub use aov::{AovChannel, AovLayout};

@@ -2,14 +2,19 @@
 //! (motion keys diced at one `nu × nv`, linearly interpolated) or shift with the lens position.
 //!
 //! Shading happened once, at the first key (PRMan's default: shading at shutter open); only
-//! positions move. Each micropolygon is bounded over every key (a vertex moving linearly in
-//! camera space moves along a straight line in raster space, so the keys' raster box holds its
-//! whole path) and grown by the circle of confusion over its depth range; every sample in that
-//! box is then tested against the micropolygon moved to the sample's own time and lens
-//! position, with the same edge rules as a still micropolygon.
+//! positions move. The shutter is cut into time strata, about one per pixel of a
+//! micropolygon's motion and at most one per pixel sample (`time_strata.rs`); the
+//! micropolygon is bounded over each stratum's times (a vertex moving linearly in camera
+//! space moves along a straight line in raster space, so its positions at the stratum's ends
+//! and at the keys between hold its path) and grown by the circle of confusion over its depth
+//! range. Only that stratum's samples in the pixels of that box are tested, each against the
+//! micropolygon moved to the sample's own time and lens position, with the same edge rules as
+//! a still micropolygon. So a fast micropolygon costs about one test per pixel it sweeps plus
+//! what it would cost still, instead of every sample of its whole path.
 use crate::dice::ShadedGrid;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
+use crate::time_strata::{stratum_count, stratum_cuts, stratum_samples, time_slack};
 use glam::{DVec3, Vec3};
 use illume_ri::motion::segment;
 use illume_ri::Camera;
@@ -31,94 +36,90 @@ impl GridMotion {
     }
 }
 
-/// Most shutter sub-intervals a micropolygon's path is cut into.
-const MAX_SUBFRAMES: usize = 16;
-
-/// Raster boxes `[x0, x1, y0, y1]` of a micropolygon over each of `n` equal sub-intervals of
-/// the shutter, so a sample is tested in full only if it lies in the box of its own time: a
-/// micropolygon sweeping 40 pixels has most of its candidate samples at times when it is
-/// elsewhere. A vertex moves linearly in camera space between keys, hence along a straight
-/// raster line (a projective map keeps lines), so the box of its positions at the ends of a
-/// sub-interval and at any key inside it holds its whole path there.
-fn subframe_boxes(
+/// The raster boxes `[x0, x1, y0, y1]` of micropolygon `quad` between consecutive `cuts`
+/// (times). A vertex moves linearly in camera space between keys, hence along a straight
+/// raster line (a projective map keeps lines), so the box of its positions at a stratum's two
+/// cuts and at every key between holds its whole path there. Each position is projected once
+/// and shared by the two strata it ends. `None` when a position does not project.
+fn strata_boxes(
     m: &GridMotion,
     quad: &[usize; 4],
-    [open, close]: [f64; 2],
-    n: usize,
-    project: &dyn Fn(DVec3) -> Option<DVec3>,
-) -> Option<Vec<[f64; 4]>> {
-    let mut boxes = Vec::with_capacity(n);
-    let at = |t: f64| -> Option<[DVec3; 4]> {
+    cuts: &[f64],
+    project: &impl Fn(DVec3) -> Option<DVec3>,
+    boxes: &mut Vec<[f64; 4]>,
+) -> Option<()> {
+    let at = |p: DVec3| project(p).filter(|q| q.is_finite());
+    let corners = |t: f64| -> Option<[DVec3; 4]> {
         let seg = segment(&m.times, t);
         let mut v = [DVec3::ZERO; 4];
         for (q, &k) in v.iter_mut().zip(quad) {
-            *q = project(m.at(k, seg)).filter(|q| q.is_finite())?;
+            *q = at(m.at(k, seg))?;
         }
         Some(v)
     };
-    let mut start = at(open)?;
-    for s in 0..n {
-        let (ta, tb) = (
-            open + (close - open) * s as f64 / n as f64,
-            open + (close - open) * (s + 1) as f64 / n as f64,
-        );
-        let end = at(tb)?;
+    let mut start = corners(*cuts.first()?)?;
+    boxes.clear();
+    for w in cuts.windows(2) {
+        let end = corners(w[1])?;
         let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-        let mut add = |v: &[DVec3; 4]| {
-            for q in v {
-                b = [b[0].min(q.x), b[1].max(q.x), b[2].min(q.y), b[3].max(q.y)];
-            }
-        };
-        add(&start);
-        add(&end);
-        for (k, &t) in m.times.iter().enumerate() {
-            if t > ta && t < tb {
-                let mut v = [DVec3::ZERO; 4];
-                for (q, &i) in v.iter_mut().zip(quad) {
-                    *q = project(m.keys[k][i].as_dvec3()).filter(|q| q.is_finite())?;
+        let mut add = |q: DVec3| b = [b[0].min(q.x), b[1].max(q.x), b[2].min(q.y), b[3].max(q.y)];
+        start.iter().chain(&end).for_each(|&q| add(q));
+        for (key, &t) in m.keys.iter().zip(&m.times) {
+            if t > w[0] && t < w[1] {
+                for &k in quad {
+                    add(at(key[k].as_dvec3())?);
                 }
-                add(&v);
             }
         }
         boxes.push(b);
         start = end;
     }
-    Some(boxes)
+    Some(())
 }
 
-/// Cuts the shutter so each sub-interval moves micropolygon `quad` about 2 pixels (given its
-/// raster box `[x0, x1, y0, y1]` over every key): the number of sub-intervals and, when more
-/// than one, the micropolygon's box in each (see [`subframe_boxes`]).
-fn shutter_cut(
+/// A bound on how far (raster pixels, either axis) a vertex of a micropolygon with raster box
+/// `[x0, x1, y0, y1]` and depths `[z0, z1]` over every key moves in `dt` of time. Between keys
+/// a raster coordinate `α·X/Z + β` of a point moving linearly in camera space has the
+/// derivative `(x₁ − x₀)·Z₀Z₁/Z(t)²` per unit of the key span, at most the key box's extent
+/// times `z1/z0` (perspective) over the shortest key span. Infinite when keys share a time.
+fn drift(
+    m: &GridMotion,
+    [x0, x1, y0, y1]: [f64; 4],
+    [z0, z1]: [f64; 2],
+    persp: bool,
+    dt: f64,
+) -> f64 {
+    let span = m
+        .times
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::MAX, f64::min);
+    if span <= 0.0 {
+        return f64::INFINITY;
+    }
+    let depth = if persp { z1 / z0 } else { 1.0 };
+    (x1 - x0).max(y1 - y0) * depth / span * dt
+}
+
+/// How far (raster pixels) micropolygon `quad` moves over the keys beyond its own size at the
+/// first key, given its raster box `[x0, x1, y0, y1]` over every key.
+fn sweep(
     m: &GridMotion,
     quad: &[usize; 4],
     [x0, x1, y0, y1]: [f64; 4],
-    [open, close]: [f64; 2],
     project: &impl Fn(DVec3) -> Option<DVec3>,
-) -> (usize, Option<Vec<[f64; 4]>>) {
-    let (w0, h0) = {
-        let v: Vec<DVec3> = quad
-            .iter()
-            .filter_map(|&k| project(m.keys[0][k].as_dvec3()))
-            .collect();
-        let f = |g: fn(&DVec3) -> f64| {
-            let xs = v.iter().map(g);
-            xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
-        };
-        (f(|q| q.x), f(|q| q.y))
+) -> f64 {
+    let v: Vec<DVec3> = quad
+        .iter()
+        .filter_map(|&k| project(m.keys[0][k].as_dvec3()))
+        .collect();
+    let extent = |g: fn(&DVec3) -> f64| {
+        let xs = v.iter().map(g);
+        xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
     };
-    let sweep = ((x1 - x0) - w0).max((y1 - y0) - h0).max(0.0);
-    let n_sub = if m.keys.len() > 1 && close > open {
-        ((sweep / 2.0).ceil() as usize).clamp(1, MAX_SUBFRAMES)
-    } else {
-        1
-    };
-    let sub = if n_sub > 1 {
-        subframe_boxes(m, quad, [open, close], n_sub, project)
-    } else {
-        None
-    };
-    (n_sub, sub)
+    ((x1 - x0) - extent(|q| q.x))
+        .max((y1 - y0) - extent(|q| q.y))
+        .max(0.0)
 }
 
 /// Samples every micropolygon of a moving or lens-blurred grid; returns the samples hit.
@@ -138,16 +139,19 @@ pub(crate) fn sample_moving_grid(
         cam.raster_from_camera(p)
     };
     let mut hits = 0;
+    let mut scratch = Scratch::default();
     for j in 0..g.nv - 1 {
         for i in 0..g.nu - 1 {
-            hits += sample_moving_micropolygon(g, m, id, [i, j], &project, persp, lens, out);
+            let s = &mut scratch;
+            hits += sample_moving_micropolygon(g, m, id, [i, j], &project, persp, lens, out, s);
         }
     }
     hits
 }
 
-/// Samples micropolygon `(i, j)` of a moving grid over every sample its path (and circle of
-/// confusion) may reach; returns the samples hit.
+/// Samples micropolygon `(i, j)` of a moving grid: over each time stratum of the shutter
+/// (`time_strata.rs`), the samples of that stratum inside the micropolygon's box over the
+/// stratum's times (grown by its circle of confusion); returns the samples hit.
 #[allow(clippy::too_many_arguments)]
 fn sample_moving_micropolygon(
     g: &ShadedGrid,
@@ -158,9 +162,9 @@ fn sample_moving_micropolygon(
     persp: bool,
     lens: Option<&Lens>,
     out: &mut SampleBuffer,
+    scratch: &mut Scratch,
 ) -> u64 {
     let nu = g.nu;
-    let mut hits = 0;
     let mp = j * (nu - 1) + i;
     if g.backface[mp] {
         return 0;
@@ -172,114 +176,214 @@ fn sample_moving_micropolygon(
     let (mut z0, mut z1) = (f64::MAX, f64::MIN);
     for key in &m.keys {
         for &v in &quad {
-            let Some(q) = project(key[v].as_dvec3()) else {
-                return hits;
+            let Some(q) = project(key[v].as_dvec3()).filter(|q| q.is_finite()) else {
+                return 0;
             };
-            if !q.is_finite() {
-                return hits;
-            }
             (x0, x1, y0, y1) = (x0.min(q.x), x1.max(q.x), y0.min(q.y), y1.max(q.y));
             (z0, z1) = (z0.min(q.z), z1.max(q.z));
         }
     }
-    let reach = g.border_reach(i, j);
-    let [bottom, right, top, left] = reach;
-    let grow = bottom.max(top).max(left).max(right);
-    let (gx, gy) = match lens {
-        Some(l) => l.blur_radius(z0, z1),
-        None => (0.0, 0.0),
+    let key_box = [x0, x1, y0, y1];
+    let mut mp = MovingMicropolygon {
+        g,
+        m,
+        quad,
+        reach: g.border_reach(i, j),
+        order: ((id as u64) << 32) | mp as u64,
+        z: [z0, z1],
+        persp,
+        lens,
+        pad: 0.0,
     };
-    let [ox, oy] = out.origin;
-    let [sw, sh] = out.size;
-    let qx0 = ((x0 - grow - gx).floor() as i32 - ox).max(0);
-    let qx1 = ((x1 + grow + gx).floor() as i32 - ox).min(sw as i32 - 1);
-    let qy0 = ((y0 - grow - gy).floor() as i32 - oy).max(0);
-    let qy1 = ((y1 + grow + gy).floor() as i32 - oy).min(sh as i32 - 1);
-    if qx0 > qx1 || qy0 > qy1 {
+    // Most micropolygons of a grid that several buckets share miss this one.
+    if mp.pixels(key_box, out).is_none() {
         return 0;
     }
-    let order = ((id as u64) << 32) | mp as u64;
-    let [open, close] = out.shutter.map(f64::from);
-    let (n_sub, sub) = shutter_cut(m, &quad, [x0, x1, y0, y1], [open, close], project);
-    let key_box = [x0, x1, y0, y1];
-    let pad = grow + 1e-6;
-    for qy in qy0..=qy1 {
-        for qx in qx0..=qx1 {
-            let base = (qy as usize * sw + qx as usize) * out.n_per;
-            for s in base..base + out.n_per {
-                let (t, l) = out.time_lens[s];
-                let (x, y) = (f64::from(out.pos[s].0), f64::from(out.pos[s].1));
-                // The pinhole box at this sample's time, shifted by this sample's lens
-                // offset over the micropolygon's depth range: most candidates end here.
-                let b = match &sub {
-                    Some(boxes) => {
-                        let k = (((f64::from(t) - open) / (close - open)) * n_sub as f64)
-                            .floor()
-                            .clamp(0.0, (n_sub - 1) as f64);
-                        boxes[k as usize]
-                    }
-                    None => key_box,
-                };
-                let (ex, ey) = match lens {
-                    Some(lens) => lens.offset_range(z0, z1, l),
-                    None => ([0.0; 2], [0.0; 2]),
-                };
-                if x < b[0] + ex[0] - pad
-                    || x > b[1] + ex[1] + pad
-                    || y < b[2] + ey[0] - pad
-                    || y > b[3] + ey[1] + pad
-                {
-                    continue;
-                }
-                let seg = segment(&m.times, f64::from(t));
-                let mut v = [DVec3::ZERO; 4];
-                for (vk, &k) in v.iter_mut().zip(&quad) {
-                    let Some(mut q) = project(m.at(k, seg)) else {
-                        return hits;
-                    };
-                    if let Some(lens) = lens {
-                        let (dx, dy) = lens.offset(q.z, l);
-                        q.x += dx;
-                        q.y += dy;
-                    }
-                    *vk = q;
-                }
-                for (tri, reach) in split_quad([0, 1, 2, 3], reach) {
-                    let Some(t) = RasterTriangle::new(tri.map(|k| v[k]), tri, reach) else {
-                        continue;
-                    };
-                    let Some(w) = t.covers(x, y) else {
-                        continue;
-                    };
-                    // Divided per sample (this triangle exists for one sample only);
-                    // a still triangle multiplies by reciprocals it computes once.
-                    let vd = t.v;
-                    let z = if persp {
-                        (1.0 / (w[0] / vd[0].z + w[1] / vd[1].z + w[2] / vd[2].z)) as f32
-                    } else {
-                        (w[0] * vd[0].z + w[1] * vd[1].z + w[2] * vd[2].z) as f32
-                    };
-                    let [near, far] = out.near_far;
-                    if z < near || z > far || z >= out.opaque_z[s] {
-                        continue;
-                    }
-                    let (idx, ccw) = (t.idx.map(|k| quad[k]), t.ccw);
-                    out.deposit(
-                        g,
-                        s,
-                        Hit {
-                            idx,
-                            w,
-                            first: a,
-                            z,
-                            order,
-                            ccw,
-                        },
-                    );
-                    hits += 1;
-                }
-            }
+    let n = out.n_per;
+    let shutter = out.shutter.map(f64::from);
+    let mut strata = if m.keys.len() > 1 && shutter[1] > shutter[0] {
+        stratum_count(sweep(m, &quad, key_box, project), n)
+    } else {
+        1
+    };
+    // A sample time may round past its stratum's cuts by `time_slack`: the boxes grow by the
+    // motion over that time (a tiny fraction of a pixel), or are not cut when it is unbounded.
+    let drift = drift(m, key_box, [z0, z1], persp, time_slack(shutter));
+    if drift.is_nan() || drift >= 0.25 {
+        strata = 1;
+    }
+    let boxes = &mut scratch.boxes;
+    if strata == 1 {
+        boxes.clear();
+        boxes.push(key_box);
+    } else {
+        mp.pad = drift;
+        let cuts = &mut scratch.cuts;
+        if cuts.len() <= strata {
+            cuts.resize(strata + 1, Vec::new());
+        }
+        if cuts[strata].is_empty() {
+            cuts[strata] = stratum_cuts(strata, n, shutter);
+        }
+        if strata_boxes(m, &quad, &cuts[strata], project, boxes).is_none() {
+            return 0;
+        }
+    }
+    let mut hits = 0;
+    for (k, &b) in boxes.iter().enumerate() {
+        match mp.sample_stratum(b, stratum_samples(k, strata, n), project, out) {
+            Some(h) => hits += h,
+            None => return hits,
         }
     }
     hits
+}
+
+/// Buffers a grid's micropolygons reuse: the shutter cuts per stratum count (filled when
+/// first needed) and one micropolygon's stratum boxes.
+#[derive(Default)]
+struct Scratch {
+    cuts: Vec<Vec<f64>>,
+    boxes: Vec<[f64; 4]>,
+}
+
+/// One moving micropolygon and what testing a sample against it needs.
+struct MovingMicropolygon<'a> {
+    g: &'a ShadedGrid,
+    m: &'a GridMotion,
+    /// Its grid vertices, counter-clockwise in (u, v).
+    quad: [usize; 4],
+    /// Outward reach of its `[bottom, right, top, left]` edges (grid borders only).
+    reach: [f64; 4],
+    order: u64,
+    /// Camera depth range over every key.
+    z: [f64; 2],
+    persp: bool,
+    lens: Option<&'a Lens>,
+    /// Extra growth of a stratum's box for the rounding of sample times (pixels).
+    pad: f64,
+}
+
+impl MovingMicropolygon<'_> {
+    /// The buffer's pixels `[x0, x1, y0, y1]` (inclusive, relative to its origin) that the
+    /// raster box `b` reaches, grown by the edge reach, the circle of confusion and `pad`;
+    /// `None` when it reaches none.
+    fn pixels(&self, b: [f64; 4], out: &SampleBuffer) -> Option<[i32; 4]> {
+        let grow = self.reach.iter().copied().fold(0.0, f64::max) + self.pad;
+        let [z0, z1] = self.z;
+        let (gx, gy) = self.lens.map_or((0.0, 0.0), |l| l.blur_radius(z0, z1));
+        let [ox, oy] = out.origin;
+        let [sw, sh] = out.size;
+        let qx0 = ((b[0] - grow - gx).floor() as i32 - ox).max(0);
+        let qx1 = ((b[1] + grow + gx).floor() as i32 - ox).min(sw as i32 - 1);
+        let qy0 = ((b[2] - grow - gy).floor() as i32 - oy).max(0);
+        let qy1 = ((b[3] + grow + gy).floor() as i32 - oy).min(sh as i32 - 1);
+        (qx0 <= qx1 && qy0 <= qy1).then_some([qx0, qx1, qy0, qy1])
+    }
+
+    /// Tests the samples at time-ordered positions `run` of every pixel the raster box `b`
+    /// (the pinhole path over those samples' times) reaches, grown by the edge reach and the
+    /// circle of confusion. `None` when a position fails to project (the micropolygon is
+    /// dropped, as when a key does not project).
+    fn sample_stratum(
+        &self,
+        b: [f64; 4],
+        run: std::ops::Range<usize>,
+        project: &impl Fn(DVec3) -> Option<DVec3>,
+        out: &mut SampleBuffer,
+    ) -> Option<u64> {
+        if run.is_empty() {
+            return Some(0);
+        }
+        let Some([qx0, qx1, qy0, qy1]) = self.pixels(b, out) else {
+            return Some(0);
+        };
+        let [z0, z1] = self.z;
+        let sw = out.size[0];
+        let pad = self.reach.iter().copied().fold(0.0, f64::max) + self.pad + 1e-6;
+        let mut hits = 0;
+        for qy in qy0..=qy1 {
+            for qx in qx0..=qx1 {
+                let base = (qy as usize * sw + qx as usize) * out.n_per;
+                for p in base + run.start..base + run.end {
+                    let ts = out.timed[p];
+                    let (x, y) = (f64::from(ts.x), f64::from(ts.y));
+                    // The pinhole box shifted by this sample's lens offset over the
+                    // micropolygon's depth range: most candidates end here.
+                    let (ex, ey) = match self.lens {
+                        Some(lens) => lens.offset_range(z0, z1, ts.lens),
+                        None => ([0.0; 2], [0.0; 2]),
+                    };
+                    if x < b[0] + ex[0] - pad
+                        || x > b[1] + ex[1] + pad
+                        || y < b[2] + ey[0] - pad
+                        || y > b[3] + ey[1] + pad
+                    {
+                        continue;
+                    }
+                    hits += self.sample_at(&ts, project, out)?;
+                }
+            }
+        }
+        Some(hits)
+    }
+
+    /// Tests one sample against the micropolygon moved to the sample's time and lens
+    /// position, with the same edge rules as a still micropolygon; deposits its hits.
+    fn sample_at(
+        &self,
+        ts: &crate::time_strata::TimedSample,
+        project: &impl Fn(DVec3) -> Option<DVec3>,
+        out: &mut SampleBuffer,
+    ) -> Option<u64> {
+        let (x, y) = (f64::from(ts.x), f64::from(ts.y));
+        let seg = segment(&self.m.times, f64::from(ts.t));
+        let mut v = [DVec3::ZERO; 4];
+        for (vk, &k) in v.iter_mut().zip(&self.quad) {
+            let mut q = project(self.m.at(k, seg))?;
+            if let Some(lens) = self.lens {
+                let (dx, dy) = lens.offset(q.z, ts.lens);
+                q.x += dx;
+                q.y += dy;
+            }
+            *vk = q;
+        }
+        let s = ts.s as usize;
+        let mut hits = 0;
+        for (tri, reach) in split_quad([0, 1, 2, 3], self.reach) {
+            let Some(t) = RasterTriangle::new(tri.map(|k| v[k]), tri, reach) else {
+                continue;
+            };
+            let Some(w) = t.covers(x, y) else {
+                continue;
+            };
+            // Divided per sample (this triangle exists for one sample only);
+            // a still triangle multiplies by reciprocals it computes once.
+            let vd = t.v;
+            let z = if self.persp {
+                (1.0 / (w[0] / vd[0].z + w[1] / vd[1].z + w[2] / vd[2].z)) as f32
+            } else {
+                (w[0] * vd[0].z + w[1] * vd[1].z + w[2] * vd[2].z) as f32
+            };
+            let [near, far] = out.near_far;
+            if z < near || z > far || z >= out.opaque_z[s] {
+                continue;
+            }
+            let (idx, ccw) = (t.idx.map(|k| self.quad[k]), t.ccw);
+            out.deposit(
+                self.g,
+                s,
+                Hit {
+                    idx,
+                    w,
+                    first: self.quad[0],
+                    z,
+                    order: self.order,
+                    ccw,
+                },
+            );
+            hits += 1;
+        }
+        Some(hits)
+    }
 }

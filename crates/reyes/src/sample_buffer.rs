@@ -10,6 +10,7 @@ use crate::csg::NO_SOLID;
 use crate::dice::ShadedGrid;
 use crate::film::SampleRegion;
 use crate::sampling::{sample_position, sample_time_lens};
+use crate::time_strata::{push_time_ordered, TimedSample};
 use crate::visible::{VisiblePoint, NO_AOV};
 use glam::DVec3;
 
@@ -39,8 +40,10 @@ pub(crate) struct SampleBuffer {
     pub n_per: usize,
     /// Raster position per sample.
     pub pos: Vec<(f32, f32)>,
-    /// Time and lens position per sample (empty when nothing blurs).
-    pub time_lens: Vec<(f32, (f32, f32))>,
+    /// Every sample with its time and lens position, pixel by pixel as in `pos` but each
+    /// pixel's samples in time order, so a time stratum is a run per pixel (`time_strata.rs`);
+    /// empty when nothing blurs.
+    pub timed: Vec<TimedSample>,
     /// Visible points per sample, unsorted.
     pub lists: Vec<Vec<VisiblePoint>>,
     /// Per sample, the depth of the nearest opaque visible point (nothing behind it shows).
@@ -88,13 +91,17 @@ impl SampleBuffer {
                 }
             }
         }
-        let mut time_lens = Vec::new();
+        let mut timed = Vec::new();
         if set.blur {
-            time_lens.reserve(pos.len());
+            timed.reserve(pos.len());
+            let mut time_lens = Vec::with_capacity(n_per);
             for py in sy0..sy1 {
                 for px in sx0..sx1 {
                     let (frame, jitter) = (set.frame, set.jitter);
+                    time_lens.clear();
                     sample_time_lens(px, py, spp, frame, jitter, set.shutter, &mut time_lens);
+                    let first = timed.len();
+                    push_time_ordered(&pos[first..first + n_per], &time_lens, first, &mut timed);
                 }
             }
         }
@@ -105,7 +112,7 @@ impl SampleBuffer {
             lists: vec![Vec::new(); pos.len()],
             opaque_z: vec![f32::INFINITY; pos.len()],
             pos,
-            time_lens,
+            timed,
             near_far: set.near_far,
             shutter: set.shutter,
             perspective: set.perspective,
