@@ -96,7 +96,8 @@ pub fn write_displays(frame: &Frame, r: &Rendered) -> Vec<Result<WrittenDisplay,
                         crate::aov::mode_items(d, frame, &rendered_vars).map_err(channels)?;
                     non_colour = crate::aov_display::has_non_colour(&items);
                     let kind = if framebuffer { "png" } else { d.kind.as_str() };
-                    crate::aov_display::aov_image(r, &items, &kind.to_ascii_lowercase())
+                    let exposure = crate::aov_display::display_exposure(d, frame.options.exposure);
+                    crate::aov_display::aov_image(r, &items, &kind.to_ascii_lowercase(), exposure)
                         .map_err(channels)?
                 }
                 None => {

@@ -42,7 +42,8 @@ pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     let mut hider = Hider::new(frame);
     let (mut shading, binding_warnings) = FrameShading::new(frame, settings.textures);
     hider.warnings.extend(binding_warnings);
-    let (layout, _) = aov::frame_layout(frame, &shading.sl.surface_outputs());
+    let (layout, aov_warnings) = aov::frame_layout(frame, &shading.sl.surface_outputs());
+    hider.warnings.extend(aov_warnings);
     shading.aov = layout.clone();
     hider.set_aovs(layout);
     let mut rendered = hider.render(&shading, settings.progress);

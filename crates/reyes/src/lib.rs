@@ -24,7 +24,7 @@ pub mod sampling;
 mod shader;
 mod visible;
 
-pub use aov::{AovChannel, AovLayout};
+pub use aov::{display_filter, AovChannel, AovLayout};
 pub use film::PixelBlock;
 pub use filter::PixelFilter;
 pub use hider::Hider;
