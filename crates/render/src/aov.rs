@@ -155,6 +155,11 @@ fn variable(
     if illume_shade::COMPONENT_NAMES.contains(&item) {
         return Ok(var(item, VarKind::Colour, true));
     }
+    // The built-in lights' shadow output, summed over the lights (unless an SL surface of
+    // the frame writes its own `__shadow`, found below). Composited like `s`: by opacity.
+    if item == "__shadow" && !sl.iter().any(|(n, _, _)| n == item) {
+        return Ok(var(item, VarKind::Float, false));
+    }
     if let Some((_, decl)) = d.declared.iter().find(|(n, _)| n == item) {
         return typed(item, decl.ty);
     }
@@ -168,7 +173,7 @@ fn variable(
     }
     Err(format!(
         "unknown output variable \"{item}\" (expected rgba/z letters, a global such as N or P, \
-         __ambient/__diffuse/__specular/__reflection, a DisplayChannel or Declare'd name, or an \
+         __ambient/__diffuse/__specular/__reflection/__shadow, a DisplayChannel or Declare'd name, or an \
          output parameter of the surface shader)"
     ))
 }
@@ -229,12 +234,13 @@ fn describe(f: PixelFilter) -> String {
 
 /// One shaded grid's AOV records, `layout.stride` floats per vertex: an SL surface's `output`
 /// parameter of that name first (`sl`, values as the shader left them), then the globals, then
-/// the built-in material's components (already times the surface's `Oi`); black for a
-/// variable nothing provides.
+/// the built-in material's components (already times the surface's `Oi`) and the lights'
+/// summed `__shadow`; black for a variable nothing provides.
 pub(crate) fn records(
     layout: &AovLayout,
     g: &illume_shade::ShadingGrid,
     components: Option<&illume_shade::Components>,
+    shadow: Option<&[f32]>,
     sl: &[(&str, Vec<f32>)],
 ) -> Vec<f32> {
     use glam::Vec3;
@@ -274,6 +280,7 @@ pub(crate) fn records(
             "v" => Some(Box::new(|i| g.v[i])),
             "du" => Some(Box::new(|_| g.du)),
             "dv" => Some(Box::new(|_| g.dv)),
+            "__shadow" => shadow.map(|s| Box::new(|i: usize| s[i]) as Box<dyn Fn(usize) -> f32>),
             _ => None,
         };
         let component = illume_shade::COMPONENT_NAMES

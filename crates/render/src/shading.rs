@@ -539,6 +539,12 @@ impl<'a> FrameShading<'a> {
         // atmosphere, which changes only `Ci`/`Oi` (PRMan: AOVs are what the surface wrote).
         let components = (sl_surface.is_none() && self.aov.wants_components())
             .then(|| illume_shade::surface_components(&surface, &g, &cache, &env).times(&g.oi));
+        let shadow = self
+            .aov
+            .channels
+            .iter()
+            .any(|c| c.name == "__shadow")
+            .then(|| cache.shadow(g.len()));
         // The atmosphere attenuates what the surface left, before the hider composites.
         let relight = GridRelight {
             builtin: &lights,
@@ -560,7 +566,13 @@ impl<'a> FrameShading<'a> {
         let aov = if self.aov.stride == 0 {
             Vec::new()
         } else {
-            crate::aov::records(&self.aov, &g, components.as_ref(), &sl_wanted)
+            crate::aov::records(
+                &self.aov,
+                &g,
+                components.as_ref(),
+                shadow.as_deref(),
+                &sl_wanted,
+            )
         };
         if nonfinite > 0 {
             self.nonfinite.fetch_add(nonfinite as u64, Relaxed);
