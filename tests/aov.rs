@@ -491,3 +491,179 @@ WorldEnd
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Channel `name` component `k` of every pixel of a render, straight from the hider.
+fn rendered(r: &illume_render::Rendered, name: &str, k: usize) -> Vec<f32> {
+    let l = &r.aov_layout;
+    let c = l.channels.iter().position(|c| c.name == name).unwrap();
+    let off = l.offsets[c] + k;
+    r.aov.iter().skip(off).step_by(l.stride).copied().collect()
+}
+
+/// Every built-in surface and the components it must light up (ambient, diffuse, specular,
+/// reflection) under `LIGHTS` with no environment map.
+const SURFACES: [(&str, [bool; 4]); 13] = [
+    ("constant", [true, false, false, false]),
+    ("defaultsurface", [true, true, false, false]),
+    ("matte", [true, true, false, false]),
+    ("plastic", [true, true, true, false]),
+    ("paintedplastic", [true, true, true, false]),
+    ("metal", [true, false, true, false]),
+    ("roughmetal", [true, true, true, false]),
+    ("thinplastic", [true, true, true, false]),
+    ("shinymetal", [true, false, true, false]),
+    ("shinyplastic", [true, true, true, false]),
+    ("orennayar", [true, true, false, false]),
+    ("wardanisotropic", [true, true, true, false]),
+    ("glossy", [true, true, true, false]),
+];
+
+/// Table test over every built-in surface: one orthographic frame of a 4×4 grid of spheres,
+/// sphere k (surface `SURFACES[k]`) in cell (k % 4, k / 4) of 24×24 pixels; in each cell
+/// |Ci − Σ components| ≤ 1e-5 and exactly the expected components are non-black (> 1e-3).
+#[test]
+fn every_builtin_surface_splits_into_components_that_sum_to_ci() {
+    let mut world = String::new();
+    for (k, (name, _)) in SURFACES.iter().enumerate() {
+        let (cx, cy) = ((k % 4) as f32 - 1.5, 1.5 - (k / 4) as f32);
+        world += &format!(
+            "AttributeBegin\nTranslate {cx} {cy} 0\nSurface \"{name}\"\nSphere 0.45 -0.45 0.45 360\nAttributeEnd\n"
+        );
+    }
+    let rib = format!(
+        "Format 96 96 1\nPixelSamples 2 2\nDisplay \"t.exr\" \"openexr\" \"Ci,__ambient,__diffuse,__specular,__reflection\"\n\
+         Projection \"orthographic\"\nScreenWindow -2 2 -2 2\nTranslate 0 0 5\nWorldBegin\n{LIGHTS}\
+         Color [0.9 0.6 0.3]\nOpacity [0.8 0.7 0.9]\n{world}WorldEnd\n"
+    );
+    let r = illume_render::render(&support::frames(&rib, None)[0], &Default::default());
+    let names = ["__ambient", "__diffuse", "__specular", "__reflection"];
+    for (k, (name, lit)) in SURFACES.iter().enumerate() {
+        let (x0, y0) = ((k % 4) * 24, (k / 4) * 24);
+        let (mut worst, mut ci_max, mut max) = (0.0f32, 0.0f32, [0.0f32; 4]);
+        for c in 0..3 {
+            let ci = rendered(&r, "Ci", c);
+            let parts: Vec<Vec<f32>> = names.iter().map(|n| rendered(&r, n, c)).collect();
+            for p in (y0..y0 + 24).flat_map(|y| (x0..x0 + 24).map(move |x| y * 96 + x)) {
+                let sum: f32 = parts.iter().map(|v| v[p]).sum();
+                worst = worst.max((ci[p] - sum).abs());
+                ci_max = ci_max.max(ci[p]);
+                for (m, v) in max.iter_mut().zip(&parts) {
+                    *m = m.max(v[p].abs());
+                }
+            }
+        }
+        eprintln!("{name}: max |Ci − Σ| = {worst:e}, component maxima {max:?}");
+        assert!(ci_max > 0.05, "{name}: sphere missing (Ci max {ci_max})");
+        assert!(worst <= 1e-5, "{name}: components miss Ci by {worst}");
+        let got = max.map(|m| m > 1e-3);
+        assert_eq!(&got, lit, "{name}: which components are lit {max:?}");
+    }
+}
+
+/// Components are what the surface wrote (PRMan): an `Atmosphere "fog"` changes `Ci` (and, on
+/// a half-transparent surface, `Oi`) but not `__diffuse`, which must be bit for bit the
+/// fog-free render's. One layer (a square): behind a transparent layer the fog's `Oi` would
+/// rightly change how much of the next layer shows.
+#[test]
+fn the_atmosphere_changes_ci_but_not_the_components() {
+    let rib = |atmosphere: &str| {
+        format!(
+            "Format 32 24 1\nDisplay \"fog.exr\" \"openexr\" \"Ci,__diffuse\"\nProjection \"perspective\"\n\
+             Translate 0 0 5\nWorldBegin\n{LIGHTS}{atmosphere}\nColor [0.9 0.6 0.3]\nOpacity [0.6 0.6 0.6]\nSurface \"plastic\"\n\
+             Polygon \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\nWorldEnd\n"
+        )
+    };
+    let clear = illume_render::render(&support::frames(&rib(""), None)[0], &Default::default());
+    let fog = r#"Atmosphere "fog" "distance" 2 "background" [0.2 0.4 0.9]"#;
+    let foggy = illume_render::render(&support::frames(&rib(fog), None)[0], &Default::default());
+    let bits = |v: Vec<f32>| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+    let moved = (0..3)
+        .flat_map(|c| {
+            let (a, b) = (rendered(&clear, "Ci", c), rendered(&foggy, "Ci", c));
+            a.into_iter().zip(b).map(|(a, b)| (a - b).abs())
+        })
+        .fold(0.0f32, f32::max);
+    assert!(moved > 0.05, "the fog did not change Ci ({moved})");
+    for c in 0..3 {
+        assert_eq!(
+            bits(rendered(&clear, "__diffuse", c)),
+            bits(rendered(&foggy, "__diffuse", c)),
+            "fog changed __diffuse channel {c}"
+        );
+    }
+}
+
+/// `Exposure` (and a display's own `"exposure"`) reach colour variables as `(gain·c)^(1/γ)`,
+/// never `N`, `P`, `s` or `z`. Metrics: colour within 1e-5 relative of the closed form
+/// applied to the unexposed render's value; non-colour bit for bit the unexposed file's.
+#[test]
+fn exposure_reaches_colour_variables_only() {
+    let dir = scratch("exposure");
+    let run = |exposure: &str| {
+        let rib = format!(
+            "Format 24 16 1\n{exposure}\nQuantize \"rgba\" 0 0 0 0\n\
+             Display \"{0}/e.exr\" \"openexr\" \"rgba,Ci,__diffuse,N,P,s,z\"\n\
+             Display \"+{0}/own.exr\" \"openexr\" \"__diffuse,t\" \"exposure\" [3 1]\n\
+             Projection \"perspective\"\nTranslate 0 0 5\nWorldBegin\n{LIGHTS}\
+             Surface \"plastic\"\nSphere 1 -1 1 360\nWorldEnd\n",
+            dir.display()
+        );
+        support::run_rib(&rib);
+        (
+            read_image(&dir.join("e.exr")).unwrap(),
+            read_image(&dir.join("own.exr")).unwrap(),
+        )
+    };
+    let (plain, plain_own) = run("");
+    let (exposed, own) = run("Exposure 2 2");
+    let bits = |v: Vec<f32>| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+    for name in ["N.X", "N.Y", "N.Z", "P.X", "P.Z", "s", "z"] {
+        assert_eq!(
+            bits(channel(&plain, name)),
+            bits(channel(&exposed, name)),
+            "{name} exposed"
+        );
+    }
+    assert_eq!(
+        bits(channel(&plain_own, "t")),
+        bits(channel(&own, "t")),
+        "t exposed"
+    );
+    let close = |got: f32, want: f32| (got - want).abs() <= 1e-5 * want.abs().max(1.0);
+    let mut lit = 0;
+    for c in ["R", "G", "B"] {
+        let (ci0, ci) = (
+            channel(&plain, &format!("Ci.{c}")),
+            channel(&exposed, &format!("Ci.{c}")),
+        );
+        let (d0, d) = (
+            channel(&plain, &format!("__diffuse.{c}")),
+            channel(&exposed, &format!("__diffuse.{c}")),
+        );
+        let d_own = channel(&own, &format!("__diffuse.{c}"));
+        let beauty = channel(&exposed, c);
+        for p in 0..ci.len() {
+            lit += usize::from(d0[p] > 0.05);
+            assert!(
+                close(ci[p], (2.0 * ci0[p]).sqrt()),
+                "Ci.{c}[{p}] {} vs {}",
+                ci[p],
+                ci0[p]
+            );
+            assert!(close(d[p], (2.0 * d0[p]).sqrt()), "__diffuse.{c}[{p}]");
+            assert!(
+                close(d_own[p], 3.0 * d0[p]),
+                "own exposure __diffuse.{c}[{p}]"
+            );
+            // The beauty's letters and the Ci variable are exposed alike.
+            assert!(
+                close(beauty[p], ci[p]),
+                "{c}[{p}] {} vs Ci {}",
+                beauty[p],
+                ci[p]
+            );
+        }
+    }
+    assert!(lit > 30, "too few lit pixels ({lit})");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -7,8 +7,9 @@
 //! (`"varying color __spec"`). A variable's type comes from, in order: its inline declaration,
 //! a `DisplayChannel` of that name, the built-in globals and material components below, a
 //! `Declare` in force at the `Display`, the `output` parameters of the frame's SL surfaces.
+use illume_core::filter::PixelFilter;
 use illume_reyes::{AovChannel, AovLayout};
-use illume_ri::{DisplaySpec, Frame};
+use illume_ri::{Diagnostic, DisplaySpec, Frame, Severity};
 use illume_rib::{Declaration, Type};
 
 /// What a variable is, for compositing and for naming its file channels.
@@ -27,6 +28,9 @@ pub struct DisplayVar {
     pub kind: VarKind,
     /// Already multiplied by `Oi` by whoever computed it (see [`AovChannel::premultiplied`]).
     pub premultiplied: bool,
+    /// Its own reconstruction filter (`None`: the frame's `PixelFilter`); see
+    /// [`illume_reyes::display_filter`].
+    pub filter: Option<PixelFilter>,
 }
 
 impl DisplayVar {
@@ -93,7 +97,18 @@ pub fn mode_items(d: &DisplaySpec, frame: &Frame, sl: &SlOutputs) -> Result<Vec<
             items.push(ModeItem::Letters(item.to_string()));
             continue;
         }
-        items.push(ModeItem::Var(variable(item, d, frame, sl)?));
+        let mut var = variable(item, d, frame, sl)?;
+        let channel = frame
+            .options
+            .display_channels
+            .iter()
+            .find(|c| c.name == var.name);
+        var.filter = illume_reyes::display_filter(
+            &d.params,
+            channel.map(|c| &c.params),
+            primary_filter(frame),
+        )?;
+        items.push(ModeItem::Var(var));
     }
     Ok(items)
 }
@@ -108,6 +123,7 @@ fn variable(
         name: name.to_string(),
         kind,
         premultiplied,
+        filter: None,
     };
     let typed = |name: &str, ty: Type| {
         kind_of(ty).map(|k| var(name, k, true)).ok_or_else(|| {
@@ -139,6 +155,11 @@ fn variable(
     if illume_shade::COMPONENT_NAMES.contains(&item) {
         return Ok(var(item, VarKind::Colour, true));
     }
+    // The built-in lights' shadow output, summed over the lights (unless an SL surface of
+    // the frame writes its own `__shadow`, found below). Composited like `s`: by opacity.
+    if item == "__shadow" && !sl.iter().any(|(n, _, _)| n == item) {
+        return Ok(var(item, VarKind::Float, false));
+    }
     if let Some((_, decl)) = d.declared.iter().find(|(n, _)| n == item) {
         return typed(item, decl.ty);
     }
@@ -152,25 +173,45 @@ fn variable(
     }
     Err(format!(
         "unknown output variable \"{item}\" (expected rgba/z letters, a global such as N or P, \
-         __ambient/__diffuse/__specular/__reflection, a DisplayChannel or Declare'd name, or an \
+         __ambient/__diffuse/__specular/__reflection/__shadow, a DisplayChannel or Declare'd name, or an \
          output parameter of the surface shader)"
     ))
 }
 
+/// The frame's `PixelFilter`.
+fn primary_filter(frame: &Frame) -> PixelFilter {
+    let (name, xw, yw) = &frame.options.filter;
+    PixelFilter::new(name, *xw, *yw)
+}
+
 /// Every variable some display of the frame names, once each in first-named order: the
 /// layout the hider carries. Displays whose mode is bad are skipped here (the display stage
-/// reports them).
-pub fn frame_layout(frame: &Frame, sl: &SlOutputs) -> (AovLayout, Vec<DisplayVar>) {
+/// reports them). A variable has one filter per frame: a later display asking for another
+/// gets the first one's pixels, with a warning.
+pub fn frame_layout(frame: &Frame, sl: &SlOutputs) -> (AovLayout, Vec<Diagnostic>) {
     let mut vars: Vec<DisplayVar> = Vec::new();
+    let mut warnings = Vec::new();
     for d in &frame.options.displays {
         let Ok(items) = mode_items(d, frame, sl) else {
             continue;
         };
         for item in items {
-            if let ModeItem::Var(v) = item {
-                if !vars.iter().any(|w| w.name == v.name) {
-                    vars.push(v);
-                }
+            let ModeItem::Var(v) = item else { continue };
+            match vars.iter().find(|w| w.name == v.name) {
+                None => vars.push(v),
+                Some(w) if w.filter != v.filter => warnings.push(Diagnostic {
+                    severity: Severity::Warning,
+                    span: illume_rib::Span::synthetic(),
+                    request: Some("Display".into()),
+                    message: format!(
+                        "Display \"{}\": \"{}\" is already filtered {} by an earlier display \
+                         (one filter per variable per frame); using that",
+                        d.name,
+                        v.name,
+                        describe(w.filter.unwrap_or_else(|| primary_filter(frame)))
+                    ),
+                }),
+                Some(_) => {}
             }
         }
     }
@@ -181,18 +222,25 @@ pub fn frame_layout(frame: &Frame, sl: &SlOutputs) -> (AovLayout, Vec<DisplayVar
             components: v.components(),
             colour: v.kind == VarKind::Colour,
             premultiplied: v.premultiplied,
+            filter: v.filter,
         })
         .collect();
-    (AovLayout::new(channels), vars)
+    (AovLayout::new(channels), warnings)
+}
+
+fn describe(f: PixelFilter) -> String {
+    format!("\"{}\" {}×{}", f.kind.name(), f.xwidth, f.ywidth)
 }
 
 /// One shaded grid's AOV records, `layout.stride` floats per vertex: an SL surface's `output`
 /// parameter of that name first (`sl`, values as the shader left them), then the globals, then
-/// the built-in material's components times `Oi`; black for a variable nothing provides.
+/// the built-in material's components (already times the surface's `Oi`) and the lights'
+/// summed `__shadow`; black for a variable nothing provides.
 pub(crate) fn records(
     layout: &AovLayout,
     g: &illume_shade::ShadingGrid,
     components: Option<&illume_shade::Components>,
+    shadow: Option<&[f32]>,
     sl: &[(&str, Vec<f32>)],
 ) -> Vec<f32> {
     use glam::Vec3;
@@ -232,6 +280,7 @@ pub(crate) fn records(
             "v" => Some(Box::new(|i| g.v[i])),
             "du" => Some(Box::new(|_| g.du)),
             "dv" => Some(Box::new(|_| g.dv)),
+            "__shadow" => shadow.map(|s| Box::new(|i: usize| s[i]) as Box<dyn Fn(usize) -> f32>),
             _ => None,
         };
         let component = illume_shade::COMPONENT_NAMES
@@ -242,7 +291,7 @@ pub(crate) fn records(
             match (triple, &float, component) {
                 (Some(t), _, _) if c.components == 3 => put(i, &t[i].to_array()),
                 (_, Some(f), _) if c.components == 1 => put(i, &[f(i)]),
-                (_, _, Some(k)) if c.components == 3 => put(i, &(k[i] * g.oi[i]).to_array()),
+                (_, _, Some(k)) if c.components == 3 => put(i, &k[i].to_array()),
                 _ => {}
             }
         }

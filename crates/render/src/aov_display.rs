@@ -1,5 +1,10 @@
 //! Display images that hold arbitrary output variables: the file channels of each mode item,
-//! the per-format rules, and a display's own `"quantize"`/`"dither"` parameters.
+//! the per-format rules, and a display's own `"exposure"`/`"quantize"`/`"dither"` parameters.
+//!
+//! Exposure (RI Spec 3.2 `RiExposure`, or the display's `"exposure" [gain gamma]`) applies to
+//! colour variables only, as to the beauty's colour: `N`, `P`, `z`, `s`, `t` and other
+//! non-colour values reach the file as the shader computed them. The `rgba` letters of a
+//! display are the beauty, exposed by the frame's `Exposure`.
 //!
 //! Channel naming (OpenEXR): letters stay `R G B A Z`; a colour variable is `name.R name.G
 //! name.B`, a point, vector or normal `name.X name.Y name.Z`, a float plain `name`: the
@@ -14,11 +19,13 @@ use illume_ri::DisplaySpec;
 /// Why a display's channels cannot be written.
 pub(crate) type ChannelError = String;
 
-/// The float image of display `d` from its mode `items`, named for file `kind`.
+/// The float image of display `d` from its mode `items`, named for file `kind`; colour
+/// variables exposed by `exposure` (gain, gamma).
 pub(crate) fn aov_image(
     r: &Rendered,
     items: &[ModeItem],
     kind: &str,
+    exposure: (f32, f32),
 ) -> Result<Image, ChannelError> {
     let exr = matches!(kind, "openexr" | "exr");
     let png = matches!(kind, "png" | "framebuffer");
@@ -51,6 +58,7 @@ pub(crate) fn aov_image(
                 }
             }
             ModeItem::Var(v) => {
+                let colour = v.kind == VarKind::Colour;
                 let k = layout
                     .channels
                     .iter()
@@ -69,7 +77,7 @@ pub(crate) fn aov_image(
                     } else {
                         format!("{}{s}", v.name)
                     };
-                    columns.push((Column::Aov(off + j), name));
+                    columns.push((Column::Aov(off + j, colour), name));
                 }
             }
         }
@@ -96,7 +104,14 @@ pub(crate) fn aov_image(
                 Column::Letter('b') => r.rgba[p * 4 + 2],
                 Column::Letter('a') => r.rgba[p * 4 + 3],
                 Column::Letter(_) => r.z[p],
-                Column::Aov(k) => r.aov.get(p * stride + k).copied().unwrap_or(0.0),
+                Column::Aov(k, colour) => {
+                    let v = r.aov.get(p * stride + k).copied().unwrap_or(0.0);
+                    if colour {
+                        expose(v, exposure)
+                    } else {
+                        v
+                    }
+                }
             });
         }
     }
@@ -111,7 +126,26 @@ pub(crate) fn aov_image(
 #[derive(Clone, Copy)]
 enum Column {
     Letter(char),
-    Aov(usize),
+    /// Offset in the record; whether the variable is a colour (exposed).
+    Aov(usize, bool),
+}
+
+/// `RiExposure` on one colour value: `(gain·c)^(1/gamma)`, as the film exposes the beauty.
+fn expose(c: f32, (gain, gamma): (f32, f32)) -> f32 {
+    if gain == 1.0 && gamma == 1.0 {
+        c
+    } else {
+        (c * gain).max(0.0).powf(1.0 / gamma)
+    }
+}
+
+/// The display's own `"exposure" [gain gamma]` over the frame's `Exposure`; a non-positive
+/// gamma (which would divide by zero) keeps the frame's.
+pub(crate) fn display_exposure(d: &DisplaySpec, frame: (f32, f32)) -> (f32, f32) {
+    match illume_ri::paramlist::floats(&d.params, "exposure").as_deref() {
+        Some([gain, gamma, ..]) if *gamma > 0.0 && gain.is_finite() => (*gain, *gamma),
+        _ => frame,
+    }
 }
 
 /// Whether the items hold a variable that is not a colour (never quantized or dithered).

@@ -92,7 +92,8 @@ pub(crate) struct DisplayPlan {
 
 enum Channels {
     Letters(String),
-    Items(Vec<crate::aov::ModeItem>),
+    /// Output variables and the display's exposure (gain, gamma) for their colour channels.
+    Items(Vec<crate::aov::ModeItem>, (f32, f32)),
 }
 
 /// A plan per display of `frame`, in order; `layout` is what the hider carries.
@@ -131,7 +132,8 @@ fn plan_display(
             }
         })?;
         non_colour = crate::aov_display::has_non_colour(&items);
-        Channels::Items(items)
+        let exposure = crate::aov_display::display_exposure(d, frame.options.exposure);
+        Channels::Items(items, exposure)
     } else {
         return Err(DisplayError::Mode {
             name: d.name.clone(),
@@ -190,18 +192,17 @@ impl DisplayPlan {
                 name: self.name.clone(),
                 mode: mode.clone(),
             }),
-            Channels::Items(items) => {
+            Channels::Items(items, exposure) => {
                 let kind = if self.framebuffer {
                     "png"
                 } else {
                     self.kind.as_str()
                 };
-                crate::aov_display::aov_image(r, items, &kind.to_ascii_lowercase()).map_err(
-                    |message| DisplayError::Channels {
+                crate::aov_display::aov_image(r, items, &kind.to_ascii_lowercase(), *exposure)
+                    .map_err(|message| DisplayError::Channels {
                         name: self.name.clone(),
                         message,
-                    },
-                )
+                    })
             }
         }
     }

@@ -66,7 +66,8 @@ fn prepare<'f>(frame: &'f Frame, settings: &RenderSettings<'f>) -> (Hider<'f>, F
     let mut hider = Hider::new(frame);
     let (mut shading, binding_warnings) = FrameShading::new(frame, settings.textures);
     hider.warnings.extend(binding_warnings);
-    let (layout, _) = aov::frame_layout(frame, &shading.sl.surface_outputs());
+    let (layout, aov_warnings) = aov::frame_layout(frame, &shading.sl.surface_outputs());
+    hider.warnings.extend(aov_warnings);
     shading.aov = layout.clone();
     hider.set_aovs(layout);
     (hider, shading)

@@ -536,6 +536,16 @@ impl<'a> FrameShading<'a> {
             }
             None => shade_surface_with(&surface, &mut g, &cache, &env).nonfinite,
         };
+        // The built-in material's components times the `Oi` the surface left: taken before the
+        // atmosphere, which changes only `Ci`/`Oi` (PRMan: AOVs are what the surface wrote).
+        let components = (sl_surface.is_none() && self.aov.wants_components())
+            .then(|| illume_shade::surface_components(&surface, &g, &cache, &env).times(&g.oi));
+        let shadow = self
+            .aov
+            .channels
+            .iter()
+            .any(|c| c.name == "__shadow")
+            .then(|| cache.shadow(g.len()));
         // The atmosphere attenuates what the surface left, before the hider composites.
         let relight = GridRelight {
             builtin: &lights,
@@ -552,20 +562,18 @@ impl<'a> FrameShading<'a> {
             &view,
             Some(&relight),
         );
-        // Records after the atmosphere: `Ci` is what the hider composites (the components
-        // are the surface's own, before any atmosphere).
+        // Records after the atmosphere: `Ci` and `Oi` are what the hider composites; the
+        // components and SL outputs are the surface's own.
         let aov = if self.aov.stride == 0 {
             Vec::new()
         } else {
-            let wants_components = self
-                .aov
-                .channels
-                .iter()
-                .any(|c| illume_shade::COMPONENT_NAMES.contains(&c.name.as_str()));
-            let components = (wants_components && sl_surface.is_none())
-                .then(|| illume_shade::surface_components(&surface, &g, &cache, &env))
-                .flatten();
-            crate::aov::records(&self.aov, &g, components.as_ref(), &sl_wanted)
+            crate::aov::records(
+                &self.aov,
+                &g,
+                components.as_ref(),
+                shadow.as_deref(),
+                &sl_wanted,
+            )
         };
         if nonfinite > 0 {
             self.nonfinite.fetch_add(nonfinite as u64, Relaxed);

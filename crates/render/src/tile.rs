@@ -191,6 +191,7 @@ fn read_aov(path: &Path, b: &[u8], pixels: usize) -> Result<(AovLayout, Vec<f32>
             components: meta[0] as usize,
             colour: meta[1] & 1 != 0,
             premultiplied: meta[1] & 2 != 0,
+            filter: None,
         });
     }
     let layout = AovLayout::new(channels);
@@ -261,12 +262,14 @@ mod tests {
                 components: 3,
                 colour: false,
                 premultiplied: false,
+                filter: None,
             },
             AovChannel {
                 name: "__diffuse".into(),
                 components: 3,
                 colour: true,
                 premultiplied: true,
+                filter: None,
             },
         ]);
         r.aov = (0..15 * 6).map(|i| (i as f32).sin()).collect();

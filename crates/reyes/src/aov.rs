@@ -7,6 +7,15 @@
 //! `stride` floats per visible point and exists only when some display names an AOV, so a
 //! render without AOVs pays nothing, and a shader's outputs no display asks for are never
 //! copied out of the shading grid.
+//!
+//! Filtering: a channel develops with `PixelFilter` unless its display (or `DisplayChannel`)
+//! names its own `"filter"`/`"filterwidth"` ([`display_filter`]); one filter per variable per
+//! frame. The hider grows its sample reach to the widest display filter of the frame
+//! ([`frame_reach`]), so a wide AOV filter sees the same samples in every bucket.
+use crate::film::SampleRegion;
+use illume_core::filter::{filter_names_list, FilterKind, PixelFilter};
+use illume_ri::{paramlist, Options};
+use illume_rib::ParamList;
 
 /// One output variable as the hider carries it.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,6 +32,9 @@ pub struct AovChannel {
     /// `s`, …) are multiplied by the point's opacity when composited, so an opaque surface's
     /// pixel holds the value itself.
     pub premultiplied: bool,
+    /// The display's own `"filter"`/`"filterwidth"` when they differ from `PixelFilter`
+    /// (`None`: filtered like the colour). Tiles do not carry it: their pixels are developed.
+    pub filter: Option<PixelFilter>,
 }
 
 /// The channels of a frame and where each starts in a record.
@@ -48,6 +60,26 @@ impl AovLayout {
             offsets,
             stride,
         }
+    }
+
+    /// Whether some channel is a built-in material component (`__ambient` …), so the shading
+    /// stage splits the surface's colour only when a display asks.
+    pub fn wants_components(&self) -> bool {
+        self.channels.iter().any(|c| {
+            matches!(
+                c.name.as_str(),
+                "__ambient" | "__diffuse" | "__specular" | "__reflection"
+            )
+        })
+    }
+
+    /// The half-widths the film needs around a pixel: the primary filter's `primary`, grown to
+    /// the widest channel filter.
+    pub(crate) fn reach(&self, primary: (f32, f32)) -> (f32, f32) {
+        self.channels
+            .iter()
+            .filter_map(|c| c.filter.map(|f| f.radius()))
+            .fold(primary, |(x, y), (fx, fy)| (x.max(fx), y.max(fy)))
     }
 
     /// Adds one visible point's record `rec` over what lies in front of it: `t` is the colour
@@ -92,6 +124,114 @@ pub(crate) fn push_record(
     }
 }
 
+/// The filter of a display variable: `own` (the display's parameters) over `channel` (its
+/// `DisplayChannel`'s), each `"filter" "name"` and `"filterwidth" [xw yw]` (or one width for
+/// both). A named filter without a width takes the kernel's default width; a width without a
+/// name keeps `primary`'s kernel. `None` when the result is `primary` itself; an unknown name
+/// is an error listing the known ones.
+pub fn display_filter(
+    own: &ParamList,
+    channel: Option<&ParamList>,
+    primary: PixelFilter,
+) -> Result<Option<PixelFilter>, String> {
+    let lists = [Some(own), channel];
+    let lists = lists.iter().flatten();
+    let name = lists.clone().find_map(|p| paramlist::string(p, "filter"));
+    let width = lists
+        .clone()
+        .find_map(|p| paramlist::floats(p, "filterwidth"));
+    if name.is_none() && width.is_none() {
+        return Ok(None);
+    }
+    let kind = match &name {
+        Some(n) => FilterKind::parse(n).ok_or_else(|| {
+            format!(
+                "unknown display filter \"{n}\" (expected one of {})",
+                filter_names_list()
+            )
+        })?,
+        None => primary.kind,
+    };
+    let (xw, yw) = match width.as_deref() {
+        Some([w]) => (*w, *w),
+        Some([x, y, ..]) => (*x, *y),
+        Some([]) => return Err("\"filterwidth\" needs one or two widths".into()),
+        None if name.is_some() => (kind.default_width(), kind.default_width()),
+        None => (primary.xwidth, primary.ywidth),
+    };
+    if !(xw > 0.0 && yw > 0.0 && xw.is_finite() && yw.is_finite()) {
+        return Err(format!(
+            "\"filterwidth\" [{xw} {yw}]: expected positive widths"
+        ));
+    }
+    let f = PixelFilter::new(kind.name(), xw, yw);
+    Ok((f != primary).then_some(f))
+}
+
+/// The widest reach (half-widths) any display or `DisplayChannel` of the frame may ask for,
+/// at least the pixel filter's: how far beyond the crop window the hider keeps geometry.
+pub(crate) fn frame_reach(opts: &Options, primary: PixelFilter) -> (f32, f32) {
+    let own = opts.displays.iter().map(|d| &d.params);
+    let channels = opts.display_channels.iter().map(|c| &c.params);
+    own.chain(channels)
+        .filter_map(|p| display_filter(p, None, primary).ok().flatten())
+        .map(|f| f.radius())
+        .fold(primary.radius(), |(x, y), (fx, fy)| (x.max(fx), y.max(fy)))
+}
+
+/// Re-develops the channels that have their own filter: for each pixel of `rect`, the
+/// normalised weighted sum of the composited `samples` (`layout.stride` floats each) within
+/// that filter's reach, written over what the pixel filter left in `pixels`.
+pub(crate) fn develop_own_filters(
+    layout: &AovLayout,
+    rect: [u32; 4],
+    region: &SampleRegion,
+    samples: &[f32],
+    pixels: &mut [f32],
+) {
+    let stride = layout.stride;
+    let [px0, px1, py0, py1] = rect;
+    let [sx0, sy0] = region.origin;
+    let (sx1, sy1) = (sx0 + region.size[0] as i32, sy0 + region.size[1] as i32);
+    for (c, &off) in layout.channels.iter().zip(&layout.offsets) {
+        let Some(filter) = c.filter else { continue };
+        let (rx, ry) = filter.radius();
+        let span = off..off + c.components;
+        let mut acc = vec![0.0f32; c.components];
+        for (k, (x, y)) in (py0..py1)
+            .flat_map(|y| (px0..px1).map(move |x| (x, y)))
+            .enumerate()
+        {
+            let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
+            acc.fill(0.0);
+            let mut wsum = 0.0f32;
+            for qy in ((cy - ry).floor() as i32).max(sy0)..=((cy + ry).floor() as i32).min(sy1 - 1)
+            {
+                for qx in
+                    ((cx - rx).floor() as i32).max(sx0)..=((cx + rx).floor() as i32).min(sx1 - 1)
+                {
+                    let q = ((qy - sy0) as usize) * region.size[0] + (qx - sx0) as usize;
+                    for s in q * region.per_pixel..(q + 1) * region.per_pixel {
+                        let (sx, sy) = region.pos[s];
+                        let w = filter.weight(sx - cx, sy - cy);
+                        if w != 0.0 {
+                            wsum += w;
+                            let rec = &samples[s * stride..(s + 1) * stride];
+                            for (a, v) in acc.iter_mut().zip(&rec[span.clone()]) {
+                                *a += w * v;
+                            }
+                        }
+                    }
+                }
+            }
+            if wsum != 0.0 {
+                acc.iter_mut().for_each(|a| *a /= wsum);
+            }
+            pixels[k * stride + off..k * stride + off + c.components].copy_from_slice(&acc);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -103,12 +243,14 @@ mod tests {
                 components: 3,
                 colour: true,
                 premultiplied: true,
+                filter: None,
             },
             AovChannel {
                 name: "s".into(),
                 components: 1,
                 colour: false,
                 premultiplied: false,
+                filter: None,
             },
         ])
     }

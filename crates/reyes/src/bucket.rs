@@ -158,7 +158,8 @@ pub(crate) fn render_bucket(
     counters: &Counters,
     aov: &AovLayout,
 ) -> PixelBlock {
-    let mut buf = SampleBuffer::new(rect, film.filter.radius(), setup);
+    // Samples as far out as the widest filter reaches (an AOV display may filter wider).
+    let mut buf = SampleBuffer::new(rect, aov.reach(film.filter.radius()), setup);
     let t_sample = Instant::now();
     let mut shade_elapsed = 0u64;
     for &id in list {
@@ -203,6 +204,7 @@ pub(crate) fn render_bucket(
         aov_in,
     );
     let mut block = film.develop(rect, &buf.region(), &composited, (&aov_samples, aov.stride));
+    crate::aov::develop_own_filters(aov, rect, &buf.region(), &aov_samples, &mut block.aov);
     // The imager (RI Spec 3.2 `RiImager`) sees filtered pixels before exposure (`Film::print`).
     shader.image(&mut block);
     counters.filter_ns.fetch_add(ns(t), Relaxed);

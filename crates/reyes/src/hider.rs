@@ -64,7 +64,8 @@ impl<'f> Hider<'f> {
         let opts = &frame.options;
         let cam = &frame.camera;
         let film = Film::new(opts);
-        let (rx, ry) = film.filter.radius();
+        // Geometry as far out as the widest pixel or display filter reaches.
+        let (rx, ry) = crate::aov::frame_reach(opts, film.filter);
         let [cx0, cx1, cy0, cy1] = cam.crop;
         let margin = rx.max(ry) + 1.0;
         let region = [

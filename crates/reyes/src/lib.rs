@@ -26,7 +26,7 @@ mod shader;
 mod time_strata;
 mod visible;
 
-pub use aov::{AovChannel, AovLayout};
+pub use aov::{display_filter, AovChannel, AovLayout};
 pub use film::PixelBlock;
 pub use filter::PixelFilter;
 pub use hider::Hider;

@@ -167,6 +167,9 @@ pub struct LightSamples {
     pub ol: Vec<Vec3>,
     /// False where the light's cone excludes the point (its body did not run).
     pub lit: Vec<bool>,
+    /// The light's `__shadow` output (PRMan's shadow lights): `shadow()`, the occluded
+    /// fraction, per point; empty for a light that casts no shadows (no map, no rays).
+    pub shadow: Vec<f32>,
 }
 
 impl LightSamples {
@@ -177,6 +180,7 @@ impl LightSamples {
             cl: vec![Vec3::ZERO; n],
             ol: vec![Vec3::ONE; n],
             lit: vec![false; n],
+            shadow: Vec::new(),
         }
     }
 }
@@ -199,5 +203,18 @@ impl<'l> LightCache<'l> {
                 })
                 .collect(),
         }
+    }
+
+    /// The surface-side `__shadow` AOV at each of `n` points: the sum of every light's
+    /// `__shadow` output (0 where no light casts a shadow), as a PRMan surface gathers it
+    /// with `lightsource("__shadow", s)` in its illuminance loop.
+    pub fn shadow(&self, n: usize) -> Vec<f32> {
+        let mut sum = vec![0.0f32; n];
+        for (_, s) in &self.lights {
+            for (a, v) in sum.iter_mut().zip(&s.shadow) {
+                *a += v;
+            }
+        }
+        sum
     }
 }

@@ -366,6 +366,8 @@ impl SlInstance {
             lit: (0..n)
                 .map(|i| lit.as_ref().is_none_or(|m| m.get(i)))
                 .collect(),
+            // An SL light exports `__shadow` as one of its outputs, not here.
+            shadow: Vec::new(),
         };
         (samples, named)
     }

@@ -20,10 +20,17 @@ pub(super) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightS
     let toward_light = normalize_or_zero(light.point("from") - light.point("to"));
     let cl = light.params.float("intensity") * light.params.vec3("lightcolor");
     let shadowing = Shadowing::new(light, env);
+    if shadowing.casts() {
+        out.shadow = vec![0.0; grid.len()];
+    }
     for i in 0..grid.len() {
         out.l[i] = toward_light;
-        out.cl[i] = cl * shadowing.lit_fraction(grid, i, -toward_light);
+        let lit = shadowing.lit_fraction(grid, i, -toward_light);
+        out.cl[i] = cl * lit;
         out.lit[i] = true;
+        if let Some(s) = out.shadow.get_mut(i) {
+            *s = 1.0 - lit;
+        }
     }
     out
 }

@@ -20,11 +20,18 @@ pub(super) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightS
     let from = light.point("from");
     let c = light.params.float("intensity") * light.params.vec3("lightcolor");
     let shadowing = Shadowing::new(light, env);
+    if shadowing.casts() {
+        out.shadow = vec![0.0; grid.len()];
+    }
     for i in 0..grid.len() {
         let l_light = grid.p[i] - from;
         out.l[i] = -l_light;
-        out.cl[i] = inverse_square(c, l_light) * shadowing.lit_fraction(grid, i, l_light);
+        let lit = shadowing.lit_fraction(grid, i, l_light);
+        out.cl[i] = inverse_square(c, l_light) * lit;
         out.lit[i] = true;
+        if let Some(s) = out.shadow.get_mut(i) {
+            *s = 1.0 - lit;
+        }
     }
     out
 }

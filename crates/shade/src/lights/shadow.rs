@@ -52,6 +52,12 @@ impl<'a> Shadowing<'a> {
         }
     }
 
+    /// Whether the light casts shadows at all (a map or shadow rays): only then does it
+    /// export `__shadow`.
+    pub fn casts(&self) -> bool {
+        self.rays.is_some() || self.maps.iter().any(|m| !m.is_empty())
+    }
+
     /// `1 - shadow(...)` at grid point `i`; `l_light` (light → point, camera space) picks the
     /// cube face. No map, or a map that cannot be read (warned once), is unshadowed.
     pub fn lit_fraction(&self, grid: &ShadingGrid, i: usize, l_light: Vec3) -> f32 {

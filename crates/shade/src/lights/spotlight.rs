@@ -39,6 +39,9 @@ pub(super) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightS
     let beam = light.params.float("beamdistribution");
     let c = light.params.float("intensity") * light.params.vec3("lightcolor");
     let shadowing = Shadowing::new(light, env);
+    if shadowing.casts() {
+        out.shadow = vec![0.0; grid.len()];
+    }
     for i in 0..grid.len() {
         let l_light = grid.p[i] - from;
         out.l[i] = -l_light;
@@ -54,7 +57,11 @@ pub(super) fn run(light: &Light, grid: &ShadingGrid, env: &ShadingEnv) -> LightS
         out.lit[i] = true;
         // pow of a negative base is NaN in SL for non-integer beams; beyond 90° the beam is dark.
         let atten = cosangle.max(0.0).powf(beam) * smoothstep(cosoutside, cosinside, cosangle);
-        out.cl[i] = inverse_square(c * atten, l_light) * shadowing.lit_fraction(grid, i, l_light);
+        let lit = shadowing.lit_fraction(grid, i, l_light);
+        out.cl[i] = inverse_square(c * atten, l_light) * lit;
+        if let Some(s) = out.shadow.get_mut(i) {
+            *s = 1.0 - lit;
+        }
     }
     out
 }

@@ -1,9 +1,9 @@
 //! The built-in materials' lighting components (issue 20), for the displays that name them:
 //! `__ambient`, `__diffuse`, `__specular` and `__reflection` (environment map or traced). The
-//! driver multiplies them by `Oi`, so for every material listed in [`surface_components`]
-//! they add up to `Ci` (plastic, metal, shinymetal and shinyplastic shade as the sum of their
-//! components; matte mirrors its `material_matte` term by term; `tests/aov.rs` checks the sum to 1e-5).
-use super::{SurfaceContext, SurfaceKind};
+//! driver multiplies them by `Oi`, so for every built-in surface they add up to `Ci`: each
+//! material writes only its `components()`, and `SurfaceKind::shade` is their sum
+//! (`tests/aov.rs` checks the sum to 1e-5 for every built-in surface).
+use super::SurfaceContext;
 use crate::light::LightCache;
 use crate::shadingenv::ShadingEnv;
 use crate::shadinggrid::ShadingGrid;
@@ -39,6 +39,21 @@ impl Components {
             .collect()
     }
 
+    /// Each component multiplied by the opacity `oi` (the values the AOVs hold).
+    pub fn times(mut self, oi: &[Vec3]) -> Components {
+        for k in [
+            &mut self.ambient,
+            &mut self.diffuse,
+            &mut self.specular,
+            &mut self.reflection,
+        ] {
+            for (c, o) in k.iter_mut().zip(oi) {
+                *c *= *o;
+            }
+        }
+        self
+    }
+
     /// The component named `COMPONENT_NAMES[k]`.
     pub fn by_index(&self, k: usize) -> Option<&[Vec3]> {
         match k {
@@ -51,23 +66,15 @@ impl Components {
     }
 }
 
-/// The components of `surface` over `grid` (lights already run into `cache`), before `Oi`;
-/// `None` for the materials that do not split their colour (`constant`, `defaultsurface`,
-/// `thinplastic`, `orennayar`, `wardanisotropic`, `glossy`): their components are black.
+/// The components of `surface` over `grid` (lights already run into `cache`), before `Oi`.
+/// Every built-in surface splits its colour (`constant`'s one term is `__ambient`; see each
+/// material's file for which term goes where).
 pub fn surface_components(
     surface: &Surface,
     grid: &ShadingGrid,
     cache: &LightCache,
     env: &ShadingEnv,
-) -> Option<Components> {
+) -> Components {
     let ctx = SurfaceContext::new(grid, cache, env, &surface.params);
-    Some(match surface.kind {
-        SurfaceKind::Matte => super::matte::components(&ctx),
-        SurfaceKind::Plastic | SurfaceKind::PaintedPlastic => super::plastic::components(&ctx),
-        SurfaceKind::Metal => super::metal::components(&ctx, false),
-        SurfaceKind::RoughMetal => super::metal::components(&ctx, true),
-        SurfaceKind::ShinyMetal => super::shinymetal::components(&ctx),
-        SurfaceKind::ShinyPlastic => super::shinyplastic::components(&ctx),
-        _ => return None,
-    })
+    surface.kind.components(&ctx)
 }

@@ -9,9 +9,8 @@
 //! | roughness | float | 0.1 (Figure 9.9) |
 //! | sharpness | float | 0.5 (Figure 9.9) |
 //! | specularcolor | color | 1 |
-use super::{c, f, SurfaceContext};
+use super::{c, f, Components, SurfaceContext};
 use crate::parameters::ParamValue;
-use glam::Vec3;
 
 pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     vec![
@@ -24,7 +23,8 @@ pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     ]
 }
 
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+/// `Cs·Ka·ambient`, `Cs·Kd·diffuse` and the glossy highlight (`__specular`) apart.
+pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
     let p = ctx.params;
     let (ka, kd, ks, r, sh) = (
@@ -36,11 +36,12 @@ pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
     );
     let spec = p.vec3_on(g, "specularcolor");
     let l = ctx.lights;
-    (0..g.len())
-        .map(|i| {
-            let nf = ctx.nf[i];
-            g.cs[i] * (ka.at(i) * l.ambient(i) + kd.at(i) * l.diffuse(i, nf))
-                + spec.at(i) * ks.at(i) * l.glossy(i, nf, ctx.v[i], r.at(i), sh.at(i))
-        })
-        .collect()
+    let mut out = Components::new(g.len());
+    for i in 0..g.len() {
+        let nf = ctx.nf[i];
+        out.ambient[i] = g.cs[i] * (ka.at(i) * l.ambient(i));
+        out.diffuse[i] = g.cs[i] * (kd.at(i) * l.diffuse(i, nf));
+        out.specular[i] = spec.at(i) * ks.at(i) * l.glossy(i, nf, ctx.v[i], r.at(i), sh.at(i));
+    }
+    out
 }

@@ -7,24 +7,12 @@
 //! | Kd | float | 1 |
 use super::{f, Components, SurfaceContext};
 use crate::parameters::ParamValue;
-use glam::Vec3;
 
 pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     vec![("Ka", f(1.0)), ("Kd", f(1.0))]
 }
 
-/// `MaterialMatte(Nf, basecolor, Ka, Kd)` at point `i`.
-pub(crate) fn material_matte(
-    ctx: &SurfaceContext,
-    i: usize,
-    basecolor: Vec3,
-    ka: f32,
-    kd: f32,
-) -> Vec3 {
-    basecolor * (ka * ctx.lights.ambient(i) + kd * ctx.lights.diffuse(i, ctx.nf[i]))
-}
-
-/// `Cs·Ka·ambient` and `Cs·Kd·diffuse` apart.
+/// `MaterialMatte`'s terms apart: `Cs·Ka·ambient` and `Cs·Kd·diffuse`.
 pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
     let (ka, kd) = (ctx.params.float_on(g, "Ka"), ctx.params.float_on(g, "Kd"));
@@ -34,12 +22,4 @@ pub(super) fn components(ctx: &SurfaceContext) -> Components {
         out.diffuse[i] = g.cs[i] * (kd.at(i) * ctx.lights.diffuse(i, ctx.nf[i]));
     }
     out
-}
-
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
-    let g = ctx.grid;
-    let (ka, kd) = (ctx.params.float_on(g, "Ka"), ctx.params.float_on(g, "Kd"));
-    (0..g.len())
-        .map(|i| material_matte(ctx, i, g.cs[i], ka.at(i), kd.at(i)))
-        .collect()
 }

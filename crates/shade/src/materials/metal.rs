@@ -10,7 +10,6 @@
 //! | roughness | float | 0.1 | 0.2 (listing: > 0.15) |
 use super::{f, Components, SurfaceContext};
 use crate::parameters::ParamValue;
-use glam::Vec3;
 
 pub(super) fn params(rough: bool) -> Vec<(&'static str, ParamValue)> {
     if rough {
@@ -46,9 +45,4 @@ pub(super) fn components(ctx: &SurfaceContext, rough: bool) -> Components {
             * (ks.at(i) * l.specular(i, ctx.nf[i], ctx.v[i], r.at(i), ctx.env.specular_model));
     }
     out
-}
-
-/// `Ci` before `Oi`: the sum of [`components`], so the AOVs add up to it by construction.
-pub(super) fn shade(ctx: &SurfaceContext, rough: bool) -> Vec<Vec3> {
-    components(ctx, rough).total()
 }

@@ -135,21 +135,29 @@ impl SurfaceKind {
         }
     }
 
-    /// The unpremultiplied surface colour at every grid point.
+    /// The unpremultiplied surface colour at every grid point: the sum of the
+    /// [`components`](Self::components), so each formula exists once and the AOVs add up to
+    /// `Ci` by construction.
     pub fn shade(self, ctx: &SurfaceContext) -> Vec<Vec3> {
+        self.components(ctx).total()
+    }
+
+    /// The material's lighting terms apart (`__ambient`, `__diffuse`, `__specular`,
+    /// `__reflection`), unpremultiplied.
+    pub fn components(self, ctx: &SurfaceContext) -> Components {
         match self {
-            SurfaceKind::Constant => constant::shade(ctx),
-            SurfaceKind::DefaultSurface => defaultsurface::shade(ctx),
-            SurfaceKind::Matte => matte::shade(ctx),
-            SurfaceKind::Plastic | SurfaceKind::PaintedPlastic => plastic::shade(ctx),
-            SurfaceKind::Metal => metal::shade(ctx, false),
-            SurfaceKind::RoughMetal => metal::shade(ctx, true),
-            SurfaceKind::ThinPlastic => thinplastic::shade(ctx),
-            SurfaceKind::ShinyMetal => shinymetal::shade(ctx),
-            SurfaceKind::ShinyPlastic => shinyplastic::shade(ctx),
-            SurfaceKind::OrenNayar => orennayar::shade(ctx),
-            SurfaceKind::WardAnisotropic => wardanisotropic::shade(ctx),
-            SurfaceKind::Glossy => glossy::shade(ctx),
+            SurfaceKind::Constant => constant::components(ctx),
+            SurfaceKind::DefaultSurface => defaultsurface::components(ctx),
+            SurfaceKind::Matte => matte::components(ctx),
+            SurfaceKind::Plastic | SurfaceKind::PaintedPlastic => plastic::components(ctx),
+            SurfaceKind::Metal => metal::components(ctx, false),
+            SurfaceKind::RoughMetal => metal::components(ctx, true),
+            SurfaceKind::ThinPlastic => thinplastic::components(ctx),
+            SurfaceKind::ShinyMetal => shinymetal::components(ctx),
+            SurfaceKind::ShinyPlastic => shinyplastic::components(ctx),
+            SurfaceKind::OrenNayar => orennayar::components(ctx),
+            SurfaceKind::WardAnisotropic => wardanisotropic::components(ctx),
+            SurfaceKind::Glossy => glossy::components(ctx),
         }
     }
 }

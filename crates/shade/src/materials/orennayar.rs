@@ -6,15 +6,15 @@
 //! | Ka | float | 1 |
 //! | Kd | float | 1 |
 //! | roughness | float | 0.5 (Figure 9.7's left teapot) |
-use super::{f, SurfaceContext};
+use super::{f, Components, SurfaceContext};
 use crate::parameters::ParamValue;
-use glam::Vec3;
 
 pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     vec![("Ka", f(1.0)), ("Kd", f(1.0)), ("roughness", f(0.5))]
 }
 
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+/// `Cs·Ka·ambient` and the Oren–Nayar term (`__diffuse`) apart.
+pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
     let p = ctx.params;
     let (ka, kd, r) = (
@@ -23,11 +23,10 @@ pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
         p.float_on(g, "roughness"),
     );
     let l = ctx.lights;
-    (0..g.len())
-        .map(|i| {
-            g.cs[i]
-                * (ka.at(i) * l.ambient(i)
-                    + kd.at(i) * l.oren_nayar(i, ctx.nf[i], ctx.v[i], r.at(i)))
-        })
-        .collect()
+    let mut out = Components::new(g.len());
+    for i in 0..g.len() {
+        out.ambient[i] = g.cs[i] * (ka.at(i) * l.ambient(i));
+        out.diffuse[i] = g.cs[i] * (kd.at(i) * l.oren_nayar(i, ctx.nf[i], ctx.v[i], r.at(i)));
+    }
+    out
 }

@@ -58,8 +58,3 @@ pub(super) fn components(ctx: &SurfaceContext) -> Components {
     }
     out
 }
-
-/// `Ci` before `Oi`: the sum of [`components`], so the AOVs add up to it by construction.
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
-    components(ctx).total()
-}

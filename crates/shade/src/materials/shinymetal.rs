@@ -90,11 +90,6 @@ pub(super) fn components(ctx: &SurfaceContext) -> Components {
     out
 }
 
-/// `Ci` before `Oi`: the sum of [`components`], so the AOVs add up to it by construction.
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
-    components(ctx).total()
-}
-
 /// RI 3.2 shinymetal's `Kr * environment(texturename, R in "world")`.
 fn world_environment(
     ctx: &SurfaceContext,

@@ -1,6 +1,7 @@
 //! `thinplastic` through `MaterialThinPlastic`, Listing 9.4: backlighting through
 //! `diffuse(-Nf)`:
 //! `basecolor * (Ka*ambient() + Kd*diffuse(Nf) + Kt*diffuse(-Nf)) + Ks*specular(Nf, V, roughness)`.
+//! The backlight `Kt*diffuse(-Nf)` is diffuse light through the sheet, so it belongs to `__diffuse`.
 //!
 //! | name | type | default (the listing's typical values) |
 //! |---|---|---|
@@ -9,9 +10,8 @@
 //! | Kt | float | 0.2 |
 //! | Ks | float | 0.5 |
 //! | roughness | float | 0.1 |
-use super::{f, SurfaceContext};
+use super::{f, Components, SurfaceContext};
 use crate::parameters::ParamValue;
-use glam::Vec3;
 
 pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     vec![
@@ -23,7 +23,8 @@ pub(super) fn params() -> Vec<(&'static str, ParamValue)> {
     ]
 }
 
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+/// The listing's terms apart (front and back diffuse both in `__diffuse`).
+pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
     let p = ctx.params;
     let (ka, kd, kt, ks, r) = (
@@ -34,14 +35,12 @@ pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
         p.float_on(g, "roughness"),
     );
     let l = ctx.lights;
-    (0..g.len())
-        .map(|i| {
-            let nf = ctx.nf[i];
-            g.cs[i]
-                * (ka.at(i) * l.ambient(i)
-                    + kd.at(i) * l.diffuse(i, nf)
-                    + kt.at(i) * l.diffuse(i, -nf))
-                + ks.at(i) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model)
-        })
-        .collect()
+    let mut out = Components::new(g.len());
+    for i in 0..g.len() {
+        let nf = ctx.nf[i];
+        out.ambient[i] = g.cs[i] * (ka.at(i) * l.ambient(i));
+        out.diffuse[i] = g.cs[i] * (kd.at(i) * l.diffuse(i, nf) + kt.at(i) * l.diffuse(i, -nf));
+        out.specular[i] = ks.at(i) * l.specular(i, nf, ctx.v[i], r.at(i), ctx.env.specular_model);
+    }
+    out
 }

@@ -14,7 +14,7 @@
 //! | xroughness | float | 0.15 |
 //! | yroughness | float | 0.5 |
 //! | xdir | vector | normalize(dPdu) |
-use super::{f, SurfaceContext};
+use super::{f, Components, SurfaceContext};
 use crate::geometric::normalize_or_zero;
 use crate::parameters::ParamValue;
 use glam::Vec3;
@@ -40,7 +40,8 @@ pub(crate) fn tangent(n: Vec3, x: Vec3) -> Vec3 {
     }
 }
 
-pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
+/// `Cs·Ka·ambient`, `Cs·Kd·diffuse` and the anisotropic highlight (`__specular`) apart.
+pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
     let p = ctx.params;
     let (ka, kd, ks, xr, yr) = (
@@ -58,14 +59,14 @@ pub(super) fn shade(ctx: &SurfaceContext) -> Vec<Vec3> {
             .as_vec3()
     });
     let l = ctx.lights;
-    (0..g.len())
-        .map(|i| {
-            let nf = ctx.nf[i];
-            let x = tangent(nf, xdir_camera.unwrap_or(g.dpdu[i]));
-            g.cs[i]
-                * (ka.at(i) * l.ambient(i)
-                    + kd.at(i) * l.diffuse(i, nf)
-                    + ks.at(i) * l.ward_anisotropic(i, nf, ctx.v[i], x, xr.at(i), yr.at(i)))
-        })
-        .collect()
+    let mut out = Components::new(g.len());
+    for i in 0..g.len() {
+        let nf = ctx.nf[i];
+        let x = tangent(nf, xdir_camera.unwrap_or(g.dpdu[i]));
+        out.ambient[i] = g.cs[i] * (ka.at(i) * l.ambient(i));
+        out.diffuse[i] = g.cs[i] * (kd.at(i) * l.diffuse(i, nf));
+        out.specular[i] =
+            g.cs[i] * (ks.at(i) * l.ward_anisotropic(i, nf, ctx.v[i], x, xr.at(i), yr.at(i)));
+    }
+    out
 }
