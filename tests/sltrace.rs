@@ -414,8 +414,10 @@ fn an_sl_area_light_gives_the_builtin_arealight_penumbra() {
 
 // ---- Interior/Exterior on traced rays ------------------------------------------------------
 
-/// Mirror at z = 10 (`MIRROR_ATTRS` before it), a constant plane of colour `RAY_C` behind the
-/// eye at z = −1: reflected rays cross `RAY_D` = 11 units. Returns the centre pixel.
+/// Mirror at z = 10 (`mirror_attrs` before it; its vertices run clockwise as the camera sees
+/// them, so its outside, `Ng`, faces the camera), a constant plane of colour `RAY_C` behind
+/// the eye at z = −1: reflected rays cross `RAY_D` = 11 units. Returns one pixel near the
+/// centre.
 fn ray_volume_pixel(case: &str, mirror_attrs: &str) -> [f64; 3] {
     let dir = shader_dir(
         case,
@@ -426,7 +428,7 @@ fn ray_volume_pixel(case: &str, mirror_attrs: &str) -> [f64; 3] {
         "AttributeBegin\nColor {r} {g} {b}\nSurface \"constant\"\n\
          Polygon \"P\" [-60 -60 -1  60 -60 -1  60 60 -1  -60 60 -1]\nAttributeEnd\n\
          AttributeBegin\n{mirror_attrs}\nSurface \"tmirror\"\n\
-         Polygon \"P\" [-5 -5 10  5 -5 10  5 5 10  -5 5 10]\nAttributeEnd"
+         Polygon \"P\" [-5 -5 10  -5 5 10  5 5 10  5 -5 10]\nAttributeEnd"
     );
     let r = render_rib(&scene(&dir, "", &world));
     pixel(&r, RES / 2 + 7, RES / 2 - 11)
