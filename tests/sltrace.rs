@@ -440,8 +440,7 @@ const RAY_D: f64 = 11.0;
 /// An SL volume reporting the distance from `E` to `P` (as 1/100 of it).
 const TDIST: &str = "volume tdist() { float d = length(P - E) / 100; Ci = color(d, d, d); }";
 /// An SL volume reporting `E` itself (offset so negative coordinates show).
-const TEYE: &str =
-    "volume teye() { Ci = color(xcomp(E), ycomp(E), zcomp(E)) / 100 + 0.5; }";
+const TEYE: &str = "volume teye() { Ci = color(xcomp(E), ycomp(E), zcomp(E)) / 100 + 0.5; }";
 
 fn fogged(distance: f64) -> [f64; 3] {
     let e = (-RAY_D / distance).exp();
