@@ -4,7 +4,10 @@
 //! closed form, and a program renders the same bits in-process as its captured RIB does.
 //!
 //! Needs `cargo build -p libillume -p render -p catrib` (as .ci/run does) and a C compiler.
-use std::path::{Path, PathBuf};
+#[path = "support/c_programs.rs"]
+mod c_programs;
+use c_programs::{compile, run, scratch, tools};
+use std::path::Path;
 use std::process::Command;
 
 /// (C statement, the same request as hand-written RIB). Floats that the C side passes as
@@ -138,71 +141,6 @@ const PRELUDE: &str = r#"
   (void)f0; (void)f4; (void)c12; (void)k4; (void)tags; (void)m16f;
 "#;
 
-struct Tools {
-    cc: PathBuf,
-    lib: PathBuf,
-    render: PathBuf,
-    catrib: PathBuf,
-}
-
-fn tools() -> Option<Tools> {
-    Some(Tools {
-        cc: illume_testenv::require_tool("cc")?,
-        lib: illume_testenv::require_built("libillume.a", "LIBILLUME")?,
-        render: illume_testenv::require_built("render", "RENDER")?,
-        catrib: illume_testenv::require_built("catrib", "CATRIB")?,
-    })
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("c_binding")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// Compiles `source` against ri.h and libillume into `dir/prog`.
-fn compile(t: &Tools, dir: &Path, source: &str) -> PathBuf {
-    let c = dir.join("prog.c");
-    std::fs::write(&c, source).unwrap();
-    let exe = dir.join("prog");
-    let include = Path::new(env!("CARGO_MANIFEST_DIR")).join("include");
-    let out = Command::new(&t.cc)
-        .args(["-Wall", "-Werror", "-o"])
-        .arg(&exe)
-        .arg(&c)
-        .arg("-I")
-        .arg(include)
-        .arg("-L")
-        .arg(t.lib.parent().unwrap())
-        .args(["-lillume", "-lm"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "cc: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    exe
-}
-
-fn run(exe: &Path, dir: &Path, env: &[(&str, &str)]) -> String {
-    let out = Command::new(exe)
-        .current_dir(dir)
-        .envs(env.iter().copied())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{} failed: {}",
-        exe.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
 #[test]
 fn every_request_writes_catribs_canonical_rib() {
     let Some(t) = tools() else { return };
@@ -235,6 +173,110 @@ fn every_request_writes_catribs_canonical_rib() {
     }
     assert_eq!(got.len(), want.len(), "request count");
     assert_eq!(got.len(), TABLE.len() + 1);
+}
+
+/// The table's requests, as the parser reads them back from `path` (ASCII, binary or gzip).
+fn parsed(path: &Path) -> Vec<illume_rib::Request> {
+    illume_rib::open(path)
+        .unwrap()
+        .map(|r| {
+            r.unwrap_or_else(|d| panic!("{}: {d}", path.display()))
+                .value
+        })
+        .collect()
+}
+
+#[test]
+fn binary_and_gzip_rib_output_read_back_as_the_ascii_requests() {
+    let Some(t) = tools() else { return };
+    let dir = scratch("formats");
+    let body: String = TABLE.iter().map(|(c, _)| format!("  {c}\n")).collect();
+    // One session per encoding; the options go right after RiBegin, as PRMan's do.
+    let sessions = [
+        ("ascii.rib", ""),
+        (
+            "binary.rib",
+            "RiOption(\"rib\", \"string format\", fmt, RI_NULL);",
+        ),
+        (
+            "gzip.rib",
+            "RiOption(\"rib\", \"string compression\", gz, RI_NULL);",
+        ),
+        (
+            "both.rib",
+            "RiOption(\"rib\", \"string format\", fmt, \"string compression\", gz, RI_NULL);",
+        ),
+        ("suffix.rib.gz", ""),
+    ];
+    let runs: String = sessions
+        .iter()
+        .map(|(file, opt)| format!("  RiBegin(\"{file}\");\n  {opt}\n{body}  RiEnd();\n"))
+        .collect();
+    let prog = format!(
+        "#include <ri.h>\n#include <stddef.h>\nint main(void) {{\n{PRELUDE}\n  RtString fmt[1] = {{\"binary\"}}, gz[1] = {{\"gzip\"}};\n  RiErrorHandler(RiErrorIgnore);\n{runs}  return 0;\n}}\n"
+    );
+    let exe = compile(&t, &dir, &prog);
+    run(&exe, &dir, &[]);
+    let ascii = parsed(&dir.join("ascii.rib"));
+    assert_eq!(ascii.len(), TABLE.len() + 1, "header + one request per row");
+    for (file, _) in &sessions[1..] {
+        let bytes = std::fs::read(dir.join(file)).unwrap();
+        let gzip = bytes.starts_with(&[0x1f, 0x8b]);
+        assert_eq!(
+            gzip,
+            file.contains("gz") || file.starts_with("both"),
+            "{file}"
+        );
+        let got = parsed(&dir.join(file));
+        for (i, (g, w)) in got.iter().zip(&ascii).enumerate() {
+            let call = if i == 0 { "header" } else { TABLE[i - 1].0 };
+            assert_eq!(g, w, "{file}: {call}");
+        }
+        assert_eq!(got.len(), ascii.len(), "{file}");
+    }
+    // The binary files really are binary (request definitions, RI 3.2 Appendix C: 0314).
+    let binary = std::fs::read(dir.join("binary.rib")).unwrap();
+    assert!(
+        binary.contains(&0xcc) && binary.contains(&0xa6),
+        "no binary request codes"
+    );
+    // And an independent reader agrees: catrib of the binary file is the ASCII file.
+    let out = Command::new(&t.catrib)
+        .arg("binary.rib")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        String::from_utf8(out.stdout).unwrap(),
+        std::fs::read_to_string(dir.join("ascii.rib")).unwrap()
+    );
+}
+
+#[test]
+fn ribout_captures_can_be_binary_and_compressed_from_the_environment() {
+    let Some(t) = tools() else { return };
+    let dir = scratch("ribout_formats");
+    let src = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/c/quadrics.c"),
+    )
+    .unwrap();
+    let exe = compile(&t, &dir, &src);
+    run(&exe, &dir, &[("ILLUME_RIBOUT", "a.rib")]);
+    let env = [
+        ("ILLUME_RIBOUT", "b.rib"),
+        ("ILLUME_RIBFORMAT", "binary"),
+        ("ILLUME_RIBCOMPRESSION", "gzip"),
+    ];
+    run(&exe, &dir, &env);
+    assert!(std::fs::read(dir.join("b.rib"))
+        .unwrap()
+        .starts_with(&[0x1f, 0x8b]));
+    assert_eq!(parsed(&dir.join("b.rib")), parsed(&dir.join("a.rib")));
 }
 
 /// A handler that prints `code severity` per error, and the calls the issue names as bad.

@@ -13,7 +13,7 @@
 use std::f32::consts::PI;
 
 pub mod pixel;
-pub use pixel::PixelFilter;
+pub use pixel::{FilterTable, PixelFilter};
 
 /// A filter kernel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -21,6 +21,9 @@ int illume_handle(void);
 void illume_comment(const char *text);
 void illume_verbatim(const char *text);
 void illume_report(int code, int severity, const char *message);
+void illume_user_pixel_filter(RtFilterFunc f, float xwidth, float ywidth);
+void illume_archive_records(const char *name, void (*record)(void *, int, const char *),
+                            void *context);
 int illume_transform_points(const char *from, const char *to, int n, float *points);
 
 /* Most parameters a varargs call may pass; more is an RIE_LIMIT error. */
@@ -45,7 +48,9 @@ void illume_params1(RtInt n, RtToken tokens[], RtPointer parms[]);
 /* A primitive's token/value list, sized by its class counts. */
 void illume_paramsc(RtInt n, RtToken tokens[], RtPointer parms[], int uniform, int varying,
                     int vertex, int facevarying);
-/* The RIB name of a filter function; NULL (with a warning) for a program's own function. */
+/* The RIB name of a standard filter function; NULL for a program's own function. */
+const char *illume_standard_filter(RtFilterFunc f);
+/* The RIB name of a filter function; gaussian (with a warning) for a program's own function. */
 const char *illume_filter_name(RtFilterFunc f);
 /* The current basis steps (for PatchMesh and Curves counts). */
 RtInt illume_ustep(void);

@@ -110,12 +110,18 @@ RtFloat RiSincFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth) {
   return windowed_sinc(x, xwidth) * windowed_sinc(y, ywidth);
 }
 
-const char *illume_filter_name(RtFilterFunc f) {
+const char *illume_standard_filter(RtFilterFunc f) {
   if (f == RiBoxFilter) return "box";
   if (f == RiTriangleFilter) return "triangle";
   if (f == RiGaussianFilter) return "gaussian";
   if (f == RiCatmullRomFilter) return "catmull-rom";
   if (f == RiSincFilter) return "sinc";
+  return NULL;
+}
+
+const char *illume_filter_name(RtFilterFunc f) {
+  const char *name = illume_standard_filter(f);
+  if (name) return name;
   illume_report(RIE_UNIMPLEMENT, RIE_WARNING,
                 "a program-defined filter function can not be used; gaussian is used instead");
   return "gaussian";
@@ -324,6 +330,11 @@ RtVoid RiPixelSamples(RtFloat xsamples, RtFloat ysamples) {
   floats_request("PixelSamples", 2, v);
 }
 RtVoid RiPixelFilter(RtFilterFunc function, RtFloat xwidth, RtFloat ywidth) {
+  if (function && !illume_standard_filter(function)) {
+    /* A program's own function: tabulated and used as the filter (src/ffi). */
+    illume_user_pixel_filter(function, xwidth, ywidth);
+    return;
+  }
   illume_call("PixelFilter");
   illume_string(illume_filter_name(function));
   illume_float(xwidth);
@@ -512,9 +523,17 @@ RtVoid RiArchiveRecord(RtToken type, char *format, ...) {
   free(text);
 }
 
+/* Hands one comment record of an archive to the program's RtArchiveCallback. */
+static void archive_record(void *context, int structural, const char *text) {
+  RtArchiveCallback callback = *(RtArchiveCallback *)context;
+  callback(structural ? RI_STRUCTURE : RI_COMMENT, "%s", (char *)text);
+}
+
+/* The callback sees the archive's comment records (RI_COMMENT for `#`, RI_STRUCTURE for `##`,
+   text after the `#`s) in file order, before the archive's requests are read. */
 RtVoid RiReadArchiveV(RtToken name, RtArchiveCallback callback, RtInt n, RtToken tokens[],
                       RtPointer parms[]) {
-  (void)callback;
+  if (callback) illume_archive_records(name, archive_record, &callback);
   illume_call("ReadArchive");
   illume_string(name);
   illume_params1(n, tokens, parms);

@@ -75,6 +75,7 @@ impl FrameImager {
 fn warning(shader: &illume_ri::Shader, message: String) -> Diagnostic {
     Diagnostic {
         severity: Severity::Warning,
+        kind: illume_ri::ErrorKind::Unimplemented,
         span: shader.span.clone(),
         request: Some("Imager".to_string()),
         message,

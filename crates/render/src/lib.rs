@@ -55,6 +55,7 @@ pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
             .into_iter()
             .map(|message| Diagnostic {
                 severity: Severity::Warning,
+                kind: illume_ri::ErrorKind::MissingData,
                 span: illume_rib::Span::synthetic(),
                 request: None,
                 message,

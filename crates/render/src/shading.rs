@@ -72,6 +72,7 @@ pub(crate) struct FrameShading<'a> {
 fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
     Diagnostic {
         severity: Severity::Warning,
+        kind: illume_ri::ErrorKind::Unimplemented,
         span: shader.span.clone(),
         request: Some(request.to_string()),
         message,

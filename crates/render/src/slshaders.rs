@@ -44,6 +44,7 @@ pub(crate) struct SlShaders {
 fn warning(shader: &Shader, request: &str, message: String) -> Diagnostic {
     Diagnostic {
         severity: Severity::Warning,
+        kind: illume_ri::ErrorKind::Unimplemented,
         span: shader.span.clone(),
         request: Some(request.to_string()),
         message,
@@ -71,14 +72,17 @@ pub(crate) fn bind_sl(
         }
         Err(e) => {
             if reported.insert(e.clone()) {
-                diags.push(warning(
-                    shader,
-                    request,
-                    format!(
-                        "shader \"{}\" does not compile; using the built-in:\n{e}",
-                        shader.name
-                    ),
-                ));
+                diags.push(Diagnostic {
+                    kind: illume_ri::ErrorKind::NoShader,
+                    ..warning(
+                        shader,
+                        request,
+                        format!(
+                            "shader \"{}\" does not compile; using the built-in:\n{e}",
+                            shader.name
+                        ),
+                    )
+                });
             }
             None
         }

@@ -61,6 +61,7 @@ pub(crate) struct FrameVolumes {
 fn warning(shader: &Shader, request: &str, message: String) -> Diagnostic {
     Diagnostic {
         severity: Severity::Warning,
+        kind: illume_ri::ErrorKind::Unimplemented,
         span: shader.span.clone(),
         request: Some(request.to_string()),
         message,

@@ -221,6 +221,7 @@ fn overflow_warnings(
             let w = (*w)?;
             Some(Diagnostic {
                 severity: Severity::Warning,
+                kind: illume_ri::ErrorKind::Unimplemented,
                 span: fp.span.clone(),
                 request: None,
                 message: format!(

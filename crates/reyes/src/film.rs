@@ -56,7 +56,8 @@ pub(crate) struct Film {
 impl Film {
     pub fn new(opts: &Options) -> Film {
         Film {
-            filter: PixelFilter::new(&opts.filter.0, opts.filter.1, opts.filter.2),
+            filter: PixelFilter::new(&opts.filter.0, opts.filter.1, opts.filter.2)
+                .with_table(opts.filter_table.clone()),
             depth_filter: opts.depth_filter,
             exposure: opts.exposure,
         }

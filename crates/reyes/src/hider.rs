@@ -76,6 +76,7 @@ impl<'f> Hider<'f> {
         if opts.depth_of_field.is_some() && !cam.is_perspective() {
             warnings.push(Diagnostic {
                 severity: Severity::Warning,
+                kind: illume_ri::ErrorKind::Incapable,
                 span: illume_rib::Span::synthetic(),
                 request: Some("DepthOfField".to_string()),
                 message: "depth of field needs a perspective camera (ignored)".to_string(),
@@ -125,6 +126,7 @@ impl<'f> Hider<'f> {
             if counts.eye_dropped > 0 {
                 warnings.push(Diagnostic {
                     severity: Severity::Warning,
+                    kind: illume_ri::ErrorKind::Limit,
                     span: fp.span.clone(),
                     request: None,
                     message: format!(

@@ -59,7 +59,8 @@ impl Ri {
                 true
             }
             (Request::ObjectBegin(_) | Request::ArchiveBegin { .. }, Some(_)) => {
-                self.diagnostics.error(
+                self.diagnostics.error_kind(
+                    crate::ErrorKind::Nesting,
                     &req.span,
                     req.value.name(),
                     "definitions can not nest (ignored)",
@@ -86,7 +87,8 @@ impl Ri {
 
     pub(crate) fn object_instance(&mut self, h: &Handle, span: &Span) {
         let Some(reqs) = self.objects.get(h).cloned() else {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::BadHandle,
                 span,
                 "ObjectInstance",
                 format!("no object with handle {h:?}"),
@@ -114,8 +116,12 @@ impl Ri {
     /// deeper, inside an attribute block unless it is inlined.
     fn nested(&mut self, span: &Span, what: &str, scope: Scope, body: impl FnOnce(&mut Ri)) {
         if self.nesting >= MAX_NESTING {
-            self.diagnostics
-                .error(span, what, "nested too deeply (recursive archive?)");
+            self.diagnostics.error_kind(
+                crate::ErrorKind::Limit,
+                span,
+                what,
+                "nested too deeply (recursive archive?)",
+            );
             return;
         }
         self.nesting += 1;
@@ -163,7 +169,8 @@ impl Ri {
             return;
         }
         let Some(path) = self.resolve(file, span) else {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::NoFile,
                 span,
                 "ReadArchive",
                 format!("can not find \"{file}\" (searched the archive searchpath and the including file's directory)"),
@@ -178,10 +185,12 @@ impl Ri {
                 "ReadArchive",
                 scope,
             ),
-            Err(e) => {
-                self.diagnostics
-                    .error(span, "ReadArchive", format!("{}: {e}", path.display()))
-            }
+            Err(e) => self.diagnostics.error_kind(
+                crate::ErrorKind::BadFile,
+                span,
+                "ReadArchive",
+                format!("{}: {e}", path.display()),
+            ),
         }
     }
 

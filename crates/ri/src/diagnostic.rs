@@ -12,13 +12,93 @@ pub enum Severity {
     Error,
 }
 
+/// What kind of problem a diagnostic reports, as the RenderMan Interface classifies errors
+/// (RI Spec 3.2 Appendix C, `RIE_*` in `ri.h`): the C binding's error handler gets
+/// [`ErrorKind::code`], so each report site says what it is instead of the binding guessing
+/// from the words.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ErrorKind {
+    NoMem,
+    System,
+    NoFile,
+    BadFile,
+    Version,
+    /// An optional RI feature this renderer does not have.
+    Incapable,
+    /// A feature not implemented (the default for warnings).
+    #[default]
+    Unimplemented,
+    Limit,
+    Bug,
+    NotStarted,
+    Nesting,
+    NotOptions,
+    NotAttribs,
+    NotPrims,
+    IllState,
+    BadMotion,
+    BadSolid,
+    BadToken,
+    Range,
+    /// Arguments that contradict each other (the default for errors).
+    Consistency,
+    BadHandle,
+    NoShader,
+    MissingData,
+    Syntax,
+    Math,
+}
+
+impl ErrorKind {
+    /// The `RIE_*` code of `ri.h`.
+    pub fn code(self) -> i32 {
+        use ErrorKind::*;
+        match self {
+            NoMem => 1,
+            System => 2,
+            NoFile => 3,
+            BadFile => 4,
+            Version => 5,
+            Incapable => 11,
+            Unimplemented => 12,
+            Limit => 13,
+            Bug => 14,
+            NotStarted => 23,
+            Nesting => 24,
+            NotOptions => 25,
+            NotAttribs => 26,
+            NotPrims => 27,
+            IllState => 28,
+            BadMotion => 29,
+            BadSolid => 30,
+            BadToken => 41,
+            Range => 42,
+            Consistency => 43,
+            BadHandle => 44,
+            NoShader => 45,
+            MissingData => 46,
+            Syntax => 47,
+            Math => 61,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
     pub severity: Severity,
+    /// The RI error class ([`ErrorKind::code`] is the `RIE_*` code).
+    pub kind: ErrorKind,
     pub span: Span,
     /// The request the message is about (`"Sphere"`), when there is one.
     pub request: Option<String>,
     pub message: String,
+}
+
+impl Diagnostic {
+    /// The `RIE_*` code of the problem.
+    pub fn code(&self) -> i32 {
+        self.kind.code()
+    }
 }
 
 impl fmt::Display for Diagnostic {
@@ -61,18 +141,63 @@ impl Diagnostics {
         self.pending.push(d);
     }
 
+    /// An error of the most common kind: arguments that make no sense together
+    /// ([`ErrorKind::Consistency`]).
     pub fn error(&mut self, span: &Span, request: &str, message: impl Into<String>) {
-        self.push(Diagnostic {
-            severity: Severity::Error,
-            span: span.clone(),
-            request: Some(request.to_string()),
-            message: message.into(),
-        });
+        self.report(
+            Severity::Error,
+            ErrorKind::Consistency,
+            span,
+            request,
+            message,
+        );
     }
 
+    /// A warning of the most common kind: something not supported, ignored or approximated
+    /// ([`ErrorKind::Unimplemented`]).
     pub fn warn(&mut self, span: &Span, request: &str, message: impl Into<String>) {
+        self.report(
+            Severity::Warning,
+            ErrorKind::Unimplemented,
+            span,
+            request,
+            message,
+        );
+    }
+
+    /// An error of a stated kind (nesting, handles, files…).
+    pub fn error_kind(
+        &mut self,
+        kind: ErrorKind,
+        span: &Span,
+        request: &str,
+        message: impl Into<String>,
+    ) {
+        self.report(Severity::Error, kind, span, request, message);
+    }
+
+    /// A warning of a stated kind.
+    pub fn warn_kind(
+        &mut self,
+        kind: ErrorKind,
+        span: &Span,
+        request: &str,
+        message: impl Into<String>,
+    ) {
+        self.report(Severity::Warning, kind, span, request, message);
+    }
+
+    fn report(
+        &mut self,
+        severity: Severity,
+        kind: ErrorKind,
+        span: &Span,
+        request: &str,
+        message: impl Into<String>,
+    ) {
         self.push(Diagnostic {
-            severity: Severity::Warning,
+            severity,
+            kind,
             span: span.clone(),
             request: Some(request.to_string()),
             message: message.into(),

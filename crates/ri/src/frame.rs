@@ -61,8 +61,12 @@ pub struct Frame {
 impl Ri {
     pub(crate) fn world_begin(&mut self, span: &Span) {
         if self.in_world() {
-            self.diagnostics
-                .error(span, "WorldBegin", "already inside a world block (ignored)");
+            self.diagnostics.error_kind(
+                crate::ErrorKind::Nesting,
+                span,
+                "WorldBegin",
+                "already inside a world block (ignored)",
+            );
             return;
         }
         self.push_block(BlockKind::World, span);

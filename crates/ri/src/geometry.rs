@@ -11,7 +11,8 @@ use illume_rib::{Request, Span};
 impl Ri {
     pub(crate) fn geometry(&mut self, req: &Request, span: &Span) {
         if !self.in_world() {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::NotPrims,
                 span,
                 req.name(),
                 "geometry is only valid inside WorldBegin/WorldEnd (ignored)",

@@ -28,7 +28,7 @@ pub mod transform;
 pub use attributes::{Attributes, Light, Shader};
 pub use camera::Camera;
 pub use declarations::Declarations;
-pub use diagnostic::{Diagnostic, Diagnostics, Severity};
+pub use diagnostic::{Diagnostic, Diagnostics, ErrorKind, Severity};
 pub use frame::{Frame, FramePrimitive};
 pub use motion::{MotionKeys, MovingTransform};
 pub use options::{DepthFilter, DisplayChannel, DisplaySpec, Options, Projection, QuantizeSpec};

@@ -22,8 +22,12 @@ impl Ri {
             } => self.light(n, handle, params, true, span),
             Illuminate { handle, on } => {
                 let Some(i) = self.lights.iter().position(|l| l.handle == handle) else {
-                    self.diagnostics
-                        .error(span, &name, format!("no light with handle {handle:?}"));
+                    self.diagnostics.error_kind(
+                        crate::ErrorKind::BadHandle,
+                        span,
+                        &name,
+                        format!("no light with handle {handle:?}"),
+                    );
                     return;
                 };
                 let a = self.attrs();
@@ -32,10 +36,12 @@ impl Ri {
                     a.lights.push(i);
                 }
             }
-            other => {
-                self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
-            }
+            other => self.diagnostics.error_kind(
+                crate::ErrorKind::Bug,
+                span,
+                other.name(),
+                "request not handled here (internal)",
+            ),
         }
     }
 

@@ -90,7 +90,8 @@ impl Ri {
     pub(crate) fn motion_begin(&mut self, times: Vec<f32>, span: &Span) {
         self.push_block(BlockKind::Motion, span);
         if self.motion.is_some() {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::Nesting,
                 span,
                 "MotionBegin",
                 "motion blocks can not nest (its requests apply as if outside it)",
@@ -99,7 +100,8 @@ impl Ri {
         }
         let sorted = times.windows(2).all(|w| w[0] <= w[1]);
         if times.is_empty() || !sorted || times.iter().any(|t| !t.is_finite()) {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::BadMotion,
                 span,
                 "MotionBegin",
                 "expected one or more increasing times (its requests apply as if outside it)",

@@ -14,7 +14,8 @@ impl Ri {
         span: &Span,
     ) {
         if !self.in_world() {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::NotPrims,
                 span,
                 "Procedural",
                 "only valid inside WorldBegin/WorldEnd (ignored)",

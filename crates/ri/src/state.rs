@@ -144,6 +144,15 @@ impl Ri {
         self.texture_maker = Some(maker);
     }
 
+    /// Puts a program's tabulated filter function in place of the current `PixelFilter`'s
+    /// kernel (the C binding's user `RtFilterFunc`; a later `PixelFilter` request clears it).
+    pub fn set_filter_table(
+        &mut self,
+        table: Option<std::sync::Arc<illume_core::filter::FilterTable>>,
+    ) {
+        self.options.filter_table = table;
+    }
+
     /// Replaces every frame's `CropWindow` (the `render --crop` flag).
     pub fn set_crop_override(&mut self, crop: Option<[f32; 4]>) {
         self.crop_override = crop;
@@ -205,7 +214,8 @@ impl Ri {
     /// renders what it described.
     pub fn finish(&mut self) {
         if let Some((_, span, _)) = self.recording.take() {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::Nesting,
                 &span,
                 "ObjectBegin",
                 "definition never closed (missing End)",
@@ -213,7 +223,8 @@ impl Ri {
         }
         while let Some(top) = self.blocks.last() {
             let (kind, span) = (top.kind, top.span.clone());
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::Nesting,
                 &span,
                 kind.begin(),
                 "block never closed before the end of the input",
@@ -230,7 +241,8 @@ impl Ri {
         let Spanned { span, value } = req;
         let name = value.name().to_string();
         if value.is_option() && self.in_world() && !matches!(value, Request::Option { .. }) {
-            self.diagnostics.error(
+            self.diagnostics.error_kind(
+                crate::ErrorKind::NotOptions,
                 &span,
                 &name,
                 "options can not change inside WorldBegin/WorldEnd (ignored)",
@@ -269,10 +281,12 @@ impl Ri {
             TransformEnd => self.end_block(BlockKind::Transform, &span, &name),
             SolidEnd => self.end_block(BlockKind::Solid, &span, &name),
             MotionEnd => self.end_block(BlockKind::Motion, &span, &name),
-            ObjectEnd | ArchiveEnd => {
-                self.diagnostics
-                    .error(&span, &name, "no matching Begin is open (ignored)")
-            }
+            ObjectEnd | ArchiveEnd => self.diagnostics.error_kind(
+                crate::ErrorKind::Nesting,
+                &span,
+                &name,
+                "no matching Begin is open (ignored)",
+            ),
             ObjectBegin(_) | ArchiveBegin { .. } => unreachable!("handled by record"),
             ObjectInstance(h) => self.object_instance(&h, &span),
             ReadArchive { name: file, .. } => self.read_archive(&file, &span, Scope::Inline),
@@ -333,7 +347,8 @@ impl Ri {
     pub(crate) fn end_block(&mut self, kind: BlockKind, span: &Span, name: &str) {
         let Some(pos) = self.blocks.iter().rposition(|b| b.kind == kind) else {
             let msg = format!("no matching {} is open (ignored)", kind.begin());
-            self.diagnostics.error(span, name, msg);
+            self.diagnostics
+                .error_kind(crate::ErrorKind::Nesting, span, name, msg);
             return;
         };
         while self.blocks.len() > pos + 1 {
@@ -343,7 +358,8 @@ impl Ri {
                 top.kind.begin(),
                 top.span
             );
-            self.diagnostics.error(span, name, msg);
+            self.diagnostics
+                .error_kind(crate::ErrorKind::Nesting, span, name, msg);
             self.pop_block();
         }
         self.pop_block();
@@ -390,6 +406,7 @@ pub fn from_rib_diagnostic(d: illume_rib::Diagnostic) -> Diagnostic {
             illume_rib::Severity::Warning => crate::Severity::Warning,
             illume_rib::Severity::Error => crate::Severity::Error,
         },
+        kind: crate::ErrorKind::Syntax,
         span: d.span,
         request: d.request,
         message: d.message,

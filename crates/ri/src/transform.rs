@@ -126,10 +126,12 @@ impl Ri {
                     format!("unknown coordinate system \"{n}\""),
                 ),
             },
-            other => {
-                self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
-            }
+            other => self.diagnostics.error_kind(
+                crate::ErrorKind::Bug,
+                span,
+                other.name(),
+                "request not handled here (internal)",
+            ),
         }
     }
 

@@ -83,6 +83,8 @@ pub(crate) struct Lexer<R> {
     line_start: u64,
     /// Skipping the rest of an over-long comment line.
     in_comment: bool,
+    /// Every comment record (`##` structural: true), when asked for (`RiReadArchive` callbacks).
+    pub(crate) comments: Option<Vec<(bool, String)>>,
     pub(crate) io_error: Option<io::Error>,
     /// Binary request definitions (0314): code → request name.
     requests: HashMap<u8, Arc<str>>,
@@ -180,6 +182,7 @@ impl<R: Read> Lexer<R> {
             line: 1,
             line_start: 0,
             in_comment: false,
+            comments: None,
             io_error: None,
             requests: HashMap::new(),
             strings: HashMap::new(),
@@ -392,11 +395,14 @@ impl<R: Read> Lexer<R> {
             if complete {
                 let len = end.unwrap_or(rest.len()).min(MAX_COMMENT);
                 let structural = rest.get(1) == Some(&b'#');
-                let text = structural.then(|| {
-                    String::from_utf8_lossy(&rest[2.min(len)..len])
-                        .trim_end_matches('\r')
-                        .to_string()
-                });
+                let skip = if structural { 2 } else { 1 };
+                let body = String::from_utf8_lossy(&rest[skip.min(len)..len])
+                    .trim_end_matches('\r')
+                    .to_string();
+                if let Some(c) = &mut self.comments {
+                    c.push((structural, body.clone()));
+                }
+                let text = structural.then_some(body);
                 self.pos += len;
                 if end.is_none_or(|e| e > len) {
                     self.in_comment = true;

@@ -43,6 +43,23 @@ impl<R: Read> Parser<R> {
         }
     }
 
+    /// Also keeps every comment record (`#` and `##`, text after the `#`s) for
+    /// [`Parser::take_comments`]: `RiReadArchive`'s callback sees them.
+    pub fn keep_comments(mut self) -> Self {
+        self.lexer.comments = Some(Vec::new());
+        self
+    }
+
+    /// Comment records read so far, in order, as (structural, text); empty unless
+    /// [`Parser::keep_comments`].
+    pub fn take_comments(&mut self) -> Vec<(bool, String)> {
+        self.lexer
+            .comments
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
+    }
+
     /// The name spans use for this stream.
     pub fn file_name(&self) -> &Arc<str> {
         &self.file

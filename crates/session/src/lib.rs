@@ -12,17 +12,22 @@
 mod backend;
 mod call;
 pub mod errors;
+mod filter;
 mod framebuffer;
+mod ribwriter;
 
-pub use backend::{Backend, InProcess, RibWriter};
+pub use backend::{Backend, InProcess};
 pub use call::{Arg, Call, Counts, ParamData};
 pub use errors::{RiError, ERRORS, SEVERITIES};
+pub use filter::nearest_standard;
 pub use framebuffer::{render_rib, Pixels};
+pub use illume_core::filter::FilterTable;
 pub use illume_rib::{Class, Type};
+pub use ribwriter::{RibFormat, RibWriter};
 
 use glam::{DMat4, DVec3};
 use illume_ri::Ri;
-use illume_rib::{Declaration, Span, Spanned};
+use illume_rib::{Declaration, Request, Span, Spanned};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -110,6 +115,13 @@ impl Session {
             }
         }
         for value in requests {
+            if let Request::Option { name, params } = &value {
+                if name == "rib" {
+                    let problems = self.backend.rib_option(params);
+                    self.pending.extend(problems);
+                    continue;
+                }
+            }
             if let Err(e) = self.backend.write(&value) {
                 self.pending.push(e);
             }
@@ -119,6 +131,67 @@ impl Session {
             });
             self.hand_over();
         }
+    }
+
+    /// `RiPixelFilter` with a program's own function, tabulated on its support: the renderer
+    /// filters with the table; the request (and so RIB output, with a warning) names the
+    /// nearest standard kernel.
+    pub fn user_pixel_filter(&mut self, xwidth: f32, ywidth: f32, table: FilterTable) {
+        let name = nearest_standard(&table, xwidth, ywidth);
+        if self.backend.writes_rib() {
+            self.pending.push(RiError::new(
+                errors::RIE_INCAPABLE,
+                errors::RIE_WARNING,
+                format!(
+                    "RiPixelFilter: RIB can not hold a program's filter function; \
+                     written as the nearest standard filter \"{name}\""
+                ),
+            ));
+        }
+        let mut call = Call::new("PixelFilter");
+        call.args = vec![
+            Arg::Str(name.to_string()),
+            Arg::Float(xwidth),
+            Arg::Float(ywidth),
+        ];
+        self.send(call);
+        self.ri.set_filter_table(Some(Arc::new(table)));
+    }
+
+    /// The comment records of archive `name` (found as `ReadArchive` finds it: as given, then
+    /// on the archive searchpath), in file order, as (structural `##`, text after the `#`s):
+    /// what `RiReadArchive`'s callback is called with. ASCII, binary and gzip archives alike.
+    pub fn archive_records(&self, name: &str) -> Result<Vec<(bool, String)>, RiError> {
+        let given = Path::new(name);
+        let path = std::iter::once(given.to_path_buf())
+            .chain(
+                self.ri
+                    .options()
+                    .archive_path
+                    .iter()
+                    .map(|d| Path::new(d).join(name)),
+            )
+            .find(|p| p.is_file())
+            .ok_or_else(|| {
+                RiError::new(
+                    errors::RIE_NOFILE,
+                    errors::RIE_ERROR,
+                    format!(
+                        "RiReadArchive: can not find \"{name}\" (searched the archive searchpath)"
+                    ),
+                )
+            })?;
+        let bad = |e: std::io::Error| {
+            RiError::new(
+                errors::RIE_BADFILE,
+                errors::RIE_ERROR,
+                format!("RiReadArchive: {}: {e}", path.display()),
+            )
+        };
+        let mut parser = illume_rib::open(&path).map_err(bad)?.keep_comments();
+        // Requests and their problems are `ReadArchive`'s business; only the records are kept.
+        for _ in parser.by_ref() {}
+        Ok(parser.take_comments())
     }
 
     /// `RiArchiveRecord(RI_COMMENT, …)`: a comment line for the RIB writer (the renderer has

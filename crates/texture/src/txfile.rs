@@ -204,7 +204,17 @@ impl TiledExr {
         }
         let table_start = header_end(&file, len).map_err(fmt)?;
         let count = header.chunk_count;
-        let mut raw = vec![0u8; count * 8];
+        // The header's tile count sizes the offset table: check it against the file before
+        // allocating, so a corrupt size is an error rather than an abort.
+        let table_len = count
+            .checked_mul(8)
+            .filter(|&n| table_start.saturating_add(n as u64) <= len)
+            .ok_or_else(|| {
+                fmt(format!(
+                    "the offset table of {count} tiles runs past the end of the file ({len} bytes)"
+                ))
+            })?;
+        let mut raw = vec![0u8; table_len];
         file.read_exact_at(&mut raw, table_start).map_err(io)?;
         let offsets: Vec<u64> = raw
             .chunks_exact(8)
@@ -213,7 +223,12 @@ impl TiledExr {
         let mut sorted = offsets.clone();
         sorted.sort_unstable();
         sorted.push(len);
+        // A chunk runs to the next chunk or the end of the file; an offset past the end (a
+        // corrupt table) has no bytes, so it reads as a missing tile instead of a huge buffer.
         let length_of = |o: u64| -> usize {
+            if o >= len {
+                return 0;
+            }
             let i = sorted.partition_point(|&x| x <= o);
             (sorted[i.min(sorted.len() - 1)].saturating_sub(o)) as usize
         };

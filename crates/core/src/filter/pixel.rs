@@ -6,13 +6,54 @@
 //! scale its argument, Catmull–Rom is in pixel units (zero at radius 2). The other kernels are
 //! the separable products of the 1-D kernels of [`super::FilterKind::eval`].
 use super::FilterKind;
+use std::sync::Arc;
+
+/// A program's own filter function (the C binding's `RtFilterFunc`), tabulated once per frame:
+/// `n`×`n` weights at the cell centres of the support `[-xwidth/2, xwidth/2]` ×
+/// `[-ywidth/2, ywidth/2]`, row `j` (y) major. Looking weights up in a table keeps the hider
+/// free of calls into foreign code (threads, panics) and its bits independent of them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FilterTable {
+    pub n: usize,
+    pub values: Vec<f32>,
+}
+
+impl FilterTable {
+    /// Tabulates `f(x, y)` on an `n`×`n` grid over the support of the given full widths.
+    pub fn tabulate(
+        n: usize,
+        xwidth: f32,
+        ywidth: f32,
+        mut f: impl FnMut(f32, f32) -> f32,
+    ) -> Self {
+        let n = n.max(1);
+        let mut values = Vec::with_capacity(n * n);
+        for j in 0..n {
+            let y = ((j as f32 + 0.5) / n as f32 - 0.5) * ywidth;
+            for i in 0..n {
+                let x = ((i as f32 + 0.5) / n as f32 - 0.5) * xwidth;
+                let w = f(x, y);
+                values.push(if w.is_finite() { w } else { 0.0 });
+            }
+        }
+        FilterTable { n, values }
+    }
+
+    /// The weight of the cell holding (u, v) in [0, 1]² of the support.
+    fn lookup(&self, u: f32, v: f32) -> f32 {
+        let cell = |t: f32| ((t * self.n as f32) as usize).min(self.n - 1);
+        self.values[cell(v) * self.n + cell(u)]
+    }
+}
 
 /// A pixel filter: a kernel and its full widths in pixels.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct PixelFilter {
     pub kind: FilterKind,
     pub xwidth: f32,
     pub ywidth: f32,
+    /// A program's filter function, which replaces `kind` (kept as its nearest standard kernel).
+    pub table: Option<Arc<FilterTable>>,
 }
 
 impl PixelFilter {
@@ -24,7 +65,14 @@ impl PixelFilter {
             kind: FilterKind::parse(name).unwrap_or(FilterKind::Gaussian),
             xwidth: xwidth.max(1e-3),
             ywidth: ywidth.max(1e-3),
+            table: None,
         }
+    }
+
+    /// This filter with a program's tabulated function in place of its kernel.
+    pub fn with_table(mut self, table: Option<Arc<FilterTable>>) -> PixelFilter {
+        self.table = table;
+        self
     }
 
     /// Half-widths: a sample farther than this from a pixel centre has no weight.
@@ -36,6 +84,9 @@ impl PixelFilter {
         let (rx, ry) = self.radius();
         if dx.abs() > rx || dy.abs() > ry {
             return 0.0;
+        }
+        if let Some(t) = &self.table {
+            return t.lookup(0.5 + 0.5 * dx / rx, 0.5 + 0.5 * dy / ry);
         }
         match self.kind {
             FilterKind::Box => 1.0,
@@ -97,6 +148,20 @@ mod tests {
         let b = PixelFilter::new("box", 1.0, 1.0);
         assert_eq!(b.weight(0.49, -0.49), 1.0);
         assert_eq!(b.weight(0.51, 0.0), 0.0);
+    }
+
+    #[test]
+    fn a_table_is_looked_up_by_cell_and_zero_outside_the_support() {
+        // f(x, y) = x + 10 y at the cell centres of a 4×4 table over widths 4 × 2.
+        let t = FilterTable::tabulate(4, 4.0, 2.0, |x, y| x + 10.0 * y);
+        assert_eq!(t.values[0], -1.5 - 7.5);
+        assert_eq!(t.values[15], 1.5 + 7.5);
+        let f = PixelFilter::new("box", 4.0, 2.0).with_table(Some(Arc::new(t)));
+        // (0.3, 0.6) lies in the cell centred on (0.5, 0.75).
+        assert_eq!(f.weight(0.3, 0.6), 0.5 + 7.5);
+        assert_eq!(f.weight(-2.0, -1.0), -1.5 - 7.5);
+        assert_eq!(f.weight(2.0, 1.0), 1.5 + 7.5);
+        assert_eq!(f.weight(2.01, 0.0), 0.0);
     }
 
     #[test]

@@ -362,3 +362,64 @@ pub extern "C" fn illume_verbatim(text: *const c_char) {
         None => st.orphan.push(not_started("ArchiveRecord")),
     })
 }
+
+/// A program's own filter function: `RtFilterFunc` of ri.h.
+type FilterFunc = extern "C" fn(f32, f32, f32, f32) -> f32;
+
+/// Cells per axis of a program's tabulated pixel filter.
+const FILTER_TABLE_SIZE: usize = 64;
+
+/// `RiPixelFilter(myfilter, xwidth, ywidth)`: calls the program's function once per table
+/// cell, here on the program's thread, so the renderer never calls foreign code.
+#[no_mangle]
+pub extern "C" fn illume_user_pixel_filter(f: FilterFunc, xwidth: f32, ywidth: f32) {
+    if !(xwidth > 0.0 && ywidth > 0.0) {
+        // The request itself reports the bad widths.
+        let mut call = Call::new("PixelFilter");
+        call.args = vec![
+            Arg::Str("box".into()),
+            Arg::Float(xwidth),
+            Arg::Float(ywidth),
+        ];
+        return with_state(|st| match &mut st.session {
+            Some(s) => s.send(call),
+            None => st.orphan.push(not_started("PixelFilter")),
+        });
+    }
+    let table = illume_session::FilterTable::tabulate(FILTER_TABLE_SIZE, xwidth, ywidth, |x, y| {
+        f(x, y, xwidth, ywidth)
+    });
+    with_state(|st| match &mut st.session {
+        Some(s) => s.user_pixel_filter(xwidth, ywidth, table),
+        None => st.orphan.push(not_started("PixelFilter")),
+    })
+}
+
+/// Called once per comment record by [`illume_archive_records`]: (context, structural, text).
+type RecordFunc = extern "C" fn(*mut c_void, c_int, *const c_char);
+
+/// `RiReadArchive`'s callback: hands each comment record of the archive to `record` (the C
+/// half turns it into the program's `RtArchiveCallback(type, "%s", text)`). The session is not
+/// borrowed while the program's callback runs (it may call Ri).
+#[no_mangle]
+pub extern "C" fn illume_archive_records(
+    name: *const c_char,
+    record: RecordFunc,
+    context: *mut c_void,
+) {
+    // SAFETY: the program's archive name: NULL or a C string.
+    let Some(name) = (unsafe { string(name) }) else {
+        return;
+    };
+    // A missing or unreadable archive is reported by the `ReadArchive` request itself.
+    let records: Vec<(bool, String)> = with_state(|st| {
+        st.session
+            .as_ref()
+            .and_then(|s| s.archive_records(&name).ok())
+            .unwrap_or_default()
+    });
+    for (structural, text) in records {
+        let text = CString::new(text.replace('\0', " ")).unwrap_or_default();
+        record(context, c_int::from(structural), text.as_ptr());
+    }
+}

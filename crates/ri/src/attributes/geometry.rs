@@ -124,10 +124,12 @@ impl Ri {
                 self.diagnostics
                     .warn(span, &name, "not supported yet (ignored)")
             }
-            other => {
-                self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
-            }
+            other => self.diagnostics.error_kind(
+                crate::ErrorKind::Bug,
+                span,
+                other.name(),
+                "request not handled here (internal)",
+            ),
         }
     }
 

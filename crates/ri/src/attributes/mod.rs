@@ -164,10 +164,12 @@ impl Ri {
                 self.light_request(req, span)
             }
             Attribute { name: n, params } => self.user_attribute(&n, &params, span),
-            other => {
-                self.diagnostics
-                    .error(span, other.name(), "request not handled here (internal)")
-            }
+            other => self.diagnostics.error_kind(
+                crate::ErrorKind::Bug,
+                span,
+                other.name(),
+                "request not handled here (internal)",
+            ),
         }
     }
 }

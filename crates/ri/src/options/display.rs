@@ -30,6 +30,7 @@ impl Options {
                 ywidth,
             } => {
                 use illume_core::filter::{filter_names_list, FilterKind};
+                o.filter_table = None;
                 if FilterKind::parse(&f).is_none() {
                     diagnostics.warn(
                         span,

@@ -78,6 +78,9 @@ pub struct Options {
     pub pixel_variance: f32,
     /// `PixelFilter` name, xwidth, ywidth.
     pub filter: (String, f32, f32),
+    /// A program's own filter function, tabulated by the C binding (`filter` then names the
+    /// nearest standard kernel, which RIB output writes). A `PixelFilter` request clears it.
+    pub filter_table: Option<std::sync::Arc<illume_core::filter::FilterTable>>,
     /// `Exposure` gain, gamma.
     pub exposure: (f32, f32),
     pub quantize_rgba: QuantizeSpec,
@@ -128,6 +131,7 @@ impl Default for Options {
             pixel_samples: [2, 2],
             pixel_variance: 0.0,
             filter: ("gaussian".into(), 2.0, 2.0),
+            filter_table: None,
             exposure: (1.0, 1.0),
             quantize_rgba: QuantizeSpec {
                 one: 255,
