@@ -6,6 +6,7 @@
 //! The build is sequential and every choice is a pure function of the input order (bins,
 //! ties broken towards the lower axis and bin), so the same triangles always give the same
 //! tree, whatever the thread count of the renderer around it.
+use crate::slab::{self, SlabRay};
 use crate::triangle::{PreparedRay, Triangle};
 use glam::{DVec3, Vec3};
 
@@ -118,6 +119,9 @@ pub struct Bvh {
     /// and the rest reordered, so the caller's data is found through this).
     ids: Vec<u32>,
     stats: BvhStats,
+    /// The largest coordinate magnitude of the scene: the boxes are padded by
+    /// `slab::pad(scale)` for the `f32` box test.
+    scale: f32,
 }
 
 struct Build<'a> {
@@ -158,11 +162,21 @@ impl Bvh {
         let ids = b.order.iter().map(|&i| input_ids[i as usize]).collect();
         let mut stats = b.stats;
         stats.nodes = b.nodes.len();
+        let mut nodes = b.nodes;
+        let scale = nodes.first().map_or(0.0, |root| {
+            root.bound.min.abs().max(root.bound.max.abs()).max_element()
+        });
+        let pad = Vec3::splat(slab::pad(scale));
+        for n in &mut nodes {
+            n.bound.min -= pad;
+            n.bound.max += pad;
+        }
         Bvh {
-            nodes: b.nodes,
+            nodes,
             triangles: ordered,
             ids,
             stats,
+            scale,
         }
     }
 
@@ -226,6 +240,11 @@ impl Bvh {
             return None;
         }
         let ray = PreparedRay::new(origin, dir)?;
+        let slab = SlabRay::new(origin, dir, self.scale);
+        let enters = |b: &Aabb, t_max: f64| match &slab {
+            Some(r) => r.hits(b.min, b.max, t_max as f32),
+            None => b.hit(&ray, t_max),
+        };
         let negative = [dir.x < 0.0, dir.y < 0.0, dir.z < 0.0];
         let mut stack = [0u32; MAX_DEPTH + 2];
         let mut top = 0usize;
@@ -233,7 +252,7 @@ impl Bvh {
         let mut found = None;
         loop {
             let node = &self.nodes[current];
-            if node.bound.hit(&ray, t_max) {
+            if enters(&node.bound, t_max) {
                 if node.count > 0 {
                     let start = node.offset as usize;
                     let end = start + node.count as usize;

@@ -16,6 +16,7 @@
 #![forbid(unsafe_code)]
 
 mod bvh;
+mod slab;
 mod triangle;
 
 pub use bvh::{Bvh, BvhStats, Hit};

@@ -33,7 +33,7 @@ pub(crate) struct FrameShading<'a> {
     default_surface: Arc<Surface>,
     displacements: HashMap<usize, BoundDisplacement>,
     /// Bound lights, index-aligned with `Frame::lights` (`None` when binding failed).
-    lights: Vec<Option<illume_shade::Light>>,
+    pub(crate) lights: Vec<Option<illume_shade::Light>>,
     coordinate_systems: HashMap<String, DMat4>,
     camera_from_world: DMat4,
     screen_from_camera: DMat4,
@@ -66,7 +66,7 @@ pub(crate) struct FrameShading<'a> {
     /// The output variables the displays ask for (none: no records are made).
     pub(crate) aov: AovLayout,
     /// `Atmosphere`/`Interior`/`Exterior` shaders.
-    volumes: FrameVolumes,
+    pub(crate) volumes: FrameVolumes,
 }
 
 fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
@@ -371,7 +371,7 @@ impl<'a> FrameShading<'a> {
     }
 
     /// The shading environment of frame primitive `prim`, "shader" space the surface's.
-    fn env(&self, attrs: &Attributes, prim: usize) -> ShadingEnv<'_> {
+    pub(crate) fn env(&self, attrs: &Attributes, prim: usize) -> ShadingEnv<'_> {
         let mut env = self.frame_env();
         let camera_from_shader = attrs
             .surface
@@ -561,6 +561,7 @@ impl<'a> FrameShading<'a> {
             &env,
             &view,
             Some(&relight),
+            None,
         );
         // Records after the atmosphere: `Ci` and `Oi` are what the hider composites; the
         // components and SL outputs are the surface's own.

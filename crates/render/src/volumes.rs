@@ -8,8 +8,8 @@
 //! book's smoke pattern (ray-march toward `E` calling `illuminance(Pmarch)` and `shadow()`)
 //! sees every light at every step.
 //!
-//! `Interior`/`Exterior` apply to rays that `trace()` follows; [`FrameVolumes::volume_along`]
-//! is the hook for that (not called yet: the renderer traces no shaded rays at this point).
+//! `Interior`/`Exterior` apply to rays that `trace()` follows (`trace/volume.rs` calls
+//! [`FrameVolumes::volume_along`] with a one-point grid per ray segment).
 use crate::slshaders::{bind_sl, SlShaders};
 use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
 use illume_shade::{Light, LightCache, LightSamples, ShadingEnv, ShadingGrid, Volume};
@@ -137,11 +137,12 @@ impl FrameVolumes {
     /// Runs the volume shader in `slot` of `attrs` over `grid` (its `Ci`/`Oi` in place);
     /// returns the count of non-finite results repaired. Nothing happens without one.
     ///
-    /// For `Atmosphere` the grid is the shaded surface grid. For `Interior`/`Exterior` on a
-    /// traced ray (the hook `trace()` is to call; not called yet), pass a one-row grid of the
-    /// rays: `p` where each ray segment ends, `i = p − origin` (the volume's `I`, whose length
-    /// is the distance through the volume), `ci`/`oi` the colour and opacity arriving there;
-    /// the attenuated values come back in `ci`/`oi`.
+    /// For `Atmosphere` the grid is the shaded surface grid and `eye` is `None` (`E` is the
+    /// camera origin). For `Interior`/`Exterior` on a traced ray the grid is one point: `p`
+    /// where the ray segment ends, `i = p − origin` (the volume's `I`, whose length is the
+    /// distance through the volume), `ci`/`oi` the colour and opacity arriving there, and
+    /// `eye` the ray's origin (`E`); the attenuated values come back in `ci`/`oi`.
+    #[allow(clippy::too_many_arguments)]
     pub fn volume_along(
         &self,
         attrs: &Attributes,
@@ -150,6 +151,7 @@ impl FrameVolumes {
         env: &ShadingEnv,
         lights: &Lights,
         relight: Option<&dyn Relight>,
+        eye: Option<glam::Vec3>,
     ) -> usize {
         let Some((bound, s)) = self.get(attrs, slot) else {
             return 0;
@@ -162,7 +164,7 @@ impl FrameVolumes {
                 0
             }
             BoundVolume::Sl(i) => {
-                i.shade_volume(grid, lights, relight, &venv, Messages::default())
+                i.shade_volume(grid, lights, relight, &venv, Messages::default(), eye)
                     .nonfinite
             }
         }

@@ -29,7 +29,9 @@ impl SlInstance {
     /// Runs a volume shader over `grid`: reads the surface's `grid.ci`/`grid.oi` as `Ci`/`Oi`
     /// and writes the attenuated values back (non-finite results leave the point as the surface
     /// shaded it). `lights` are the grid's lights at `P`; `relight` (if any) evaluates them
-    /// elsewhere.
+    /// elsewhere. `eye` is `E`: the camera origin for an `Atmosphere` (`None`), the ray's
+    /// origin for an `Interior`/`Exterior` on a traced ray (so marching from `P` toward `E`
+    /// stays on the ray's segment).
     pub fn shade_volume(
         &self,
         grid: &mut ShadingGrid,
@@ -37,6 +39,7 @@ impl SlInstance {
         relight: Option<&dyn Relight>,
         env: &ShadingEnv,
         messages: Messages,
+        eye: Option<Vec3>,
     ) -> SlStats {
         let n = grid.len();
         let (ci, oi) = {
@@ -44,6 +47,9 @@ impl SlInstance {
             let mut exec = crate::Exec::new(&self.shader.program, g, env, lights);
             exec.messages = messages;
             exec.relight = relight;
+            if let Some(e) = eye {
+                exec.set_global(Global::E, Value::triple(e));
+            }
             exec.set_global(Global::Ci, Value::Triple(Slot::Varying(g.ci.clone())));
             exec.set_global(Global::Oi, Value::Triple(Slot::Varying(g.oi.clone())));
             let params = self.params_for(&mut exec, g);

@@ -8,10 +8,14 @@
 //! `1 − Os` of the shadow-visible surfaces flagged `"Os"`/`"shader"` and stops at the first
 //! opaque one.
 //!
+//! The colour a ray brings back is attenuated by the `Interior`/`Exterior` of the surface it
+//! leaves (`volume.rs`).
+//!
 //! The scene is built on first use when no light needed it up front; that build runs
 //! sequentially (it may happen inside a shading task, where waiting on rayon work could
 //! deadlock on the once-cell).
 pub(crate) mod hit;
+mod volume;
 
 use crate::rayscene::RayScene;
 use crate::shading::FrameShading;
@@ -92,6 +96,7 @@ impl RayTracer for FrameShading<'_> {
             }
         }
         out.oi = Vec3::ONE - through;
+        self.ray_volume(from, dir, &mut out, depth);
         Some(out)
     }
 

@@ -23,6 +23,7 @@ pub(crate) const NO_HIT: f32 = 1.0e30;
 /// Stream tags keeping the sampled calls' random numbers apart.
 const OCCLUSION_STREAM: u32 = 0x6f63_636c;
 const SHADOW_STREAM: u32 = 0x7368_6477;
+const ENVIRONMENT_STREAM: u32 = 0x656e_7672;
 
 impl Exec<'_> {
     /// The ray-tracing family members; `None` for an overload the executor does not implement.
@@ -226,8 +227,17 @@ impl Exec<'_> {
             .collect()
     }
 
-    /// `environment("raytrace", R)`: the colour traced along `R` from `P`.
-    pub(crate) fn raytraced_environment(&self, mask: &Mask, r: &Slot<Vec3>) -> Vec<Vec3> {
+    /// `environment("raytrace", R)`: the colour traced along `R` from `P`; with `blur` > 0
+    /// the mean of `samples` rays spread uniformly over the cone of half-angle `blur`
+    /// (radians, at most π/2) about `R`, stratified and hashed from the point like
+    /// `occlusion()`. Blur 0 traces the single ray along `R` whatever `samples` says.
+    pub(crate) fn raytraced_environment(
+        &self,
+        mask: &Mask,
+        r: &Slot<Vec3>,
+        samples: f32,
+        blur: f32,
+    ) -> Vec<Vec3> {
         let p = match self.global(illume_sl::ast::Global::P) {
             Value::Triple(s) => s.clone(),
             _ => Slot::Uniform(Vec3::ZERO),
@@ -235,13 +245,34 @@ impl Exec<'_> {
         let Some(t) = self.env.tracer else {
             return vec![Vec3::ZERO; self.n];
         };
+        let blur = if blur.is_finite() {
+            f64::from(blur).clamp(0.0, std::f64::consts::FRAC_PI_2)
+        } else {
+            0.0
+        };
+        let count = if blur > 0.0 && samples.is_finite() {
+            samples.clamp(1.0, 4096.0) as u32
+        } else {
+            1
+        };
+        let stream = ENVIRONMENT_STREAM ^ self.env.seed;
         (0..self.n)
             .map(|i| {
-                if mask.get(i) {
-                    self.trace_colour(t, i, *p.at(i), *r.at(i))
-                } else {
-                    Vec3::ZERO
+                if !mask.get(i) {
+                    return Vec3::ZERO;
                 }
+                let (p, r) = (*p.at(i), *r.at(i));
+                if blur == 0.0 {
+                    return self.trace_colour(t, i, p, r);
+                }
+                let axis = r.as_dvec3().normalize_or_zero();
+                let mut sum = DVec3::ZERO;
+                for k in 0..count {
+                    let u = illume_shade::stratified_sample(p, k, count, stream);
+                    let d = cone_direction(axis, blur, u);
+                    sum += self.trace_colour(t, i, p, d.as_vec3()).as_dvec3();
+                }
+                (sum / f64::from(count)).as_vec3()
             })
             .collect()
     }
@@ -299,6 +330,18 @@ fn disk_offset(axis: DVec3, (a, b): (f64, f64)) -> DVec3 {
     let v = w.cross(u);
     let (r, phi) = (a.sqrt(), std::f64::consts::TAU * b);
     u * (r * phi.cos()) + v * (r * phi.sin())
+}
+
+/// A direction uniform over the solid angle of the cone of half-angle `angle` about the unit
+/// `axis`, from two uniform numbers (`cos θ` uniform on `[cos angle, 1]`).
+fn cone_direction(axis: DVec3, angle: f64, (a, b): (f64, f64)) -> DVec3 {
+    if axis == DVec3::ZERO {
+        return axis;
+    }
+    let cos_t = 1.0 - a * (1.0 - angle.cos());
+    let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+    let ring = disk_offset(axis, (1.0, b));
+    axis * cos_t + ring * sin_t
 }
 
 /// A varying triple from the hits (zero where nothing was hit).

@@ -273,7 +273,12 @@ impl Exec<'_> {
                 })
             }
             TextureKind::Environment => {
-                let c = self.raytraced_environment(mask, &first);
+                let c = self.raytraced_environment(
+                    mask,
+                    &first,
+                    opts.shadow.samples,
+                    opts.blur.unwrap_or(0.0),
+                );
                 Some(if nch == 1 {
                     Value::Float(Slot::Varying(c.into_iter().map(|c| c.x).collect()))
                 } else {
