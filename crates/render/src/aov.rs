@@ -106,7 +106,7 @@ pub fn mode_items(d: &DisplaySpec, frame: &Frame, sl: &SlOutputs) -> Result<Vec<
         var.filter = illume_reyes::display_filter(
             &d.params,
             channel.map(|c| &c.params),
-            primary_filter(frame),
+            &primary_filter(frame),
         )?;
         items.push(ModeItem::Var(var));
     }
@@ -201,6 +201,7 @@ pub fn frame_layout(frame: &Frame, sl: &SlOutputs) -> (AovLayout, Vec<Diagnostic
                 None => vars.push(v),
                 Some(w) if w.filter != v.filter => warnings.push(Diagnostic {
                     severity: Severity::Warning,
+                    kind: illume_ri::ErrorKind::Incapable,
                     span: illume_rib::Span::synthetic(),
                     request: Some("Display".into()),
                     message: format!(
@@ -208,7 +209,7 @@ pub fn frame_layout(frame: &Frame, sl: &SlOutputs) -> (AovLayout, Vec<Diagnostic
                          (one filter per variable per frame); using that",
                         d.name,
                         v.name,
-                        describe(w.filter.unwrap_or_else(|| primary_filter(frame)))
+                        describe(w.filter.clone().unwrap_or_else(|| primary_filter(frame)))
                     ),
                 }),
                 Some(_) => {}
@@ -222,7 +223,7 @@ pub fn frame_layout(frame: &Frame, sl: &SlOutputs) -> (AovLayout, Vec<Diagnostic
             components: v.components(),
             colour: v.kind == VarKind::Colour,
             premultiplied: v.premultiplied,
-            filter: v.filter,
+            filter: v.filter.clone(),
         })
         .collect();
     (AovLayout::new(channels), warnings)

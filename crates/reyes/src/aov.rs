@@ -78,7 +78,7 @@ impl AovLayout {
     pub(crate) fn reach(&self, primary: (f32, f32)) -> (f32, f32) {
         self.channels
             .iter()
-            .filter_map(|c| c.filter.map(|f| f.radius()))
+            .filter_map(|c| c.filter.as_ref().map(|f| f.radius()))
             .fold(primary, |(x, y), (fx, fy)| (x.max(fx), y.max(fy)))
     }
 
@@ -132,7 +132,7 @@ pub(crate) fn push_record(
 pub fn display_filter(
     own: &ParamList,
     channel: Option<&ParamList>,
-    primary: PixelFilter,
+    primary: &PixelFilter,
 ) -> Result<Option<PixelFilter>, String> {
     let lists = [Some(own), channel];
     let lists = lists.iter().flatten();
@@ -165,12 +165,12 @@ pub fn display_filter(
         ));
     }
     let f = PixelFilter::new(kind.name(), xw, yw);
-    Ok((f != primary).then_some(f))
+    Ok((f != *primary).then_some(f))
 }
 
 /// The widest reach (half-widths) any display or `DisplayChannel` of the frame may ask for,
 /// at least the pixel filter's: how far beyond the crop window the hider keeps geometry.
-pub(crate) fn frame_reach(opts: &Options, primary: PixelFilter) -> (f32, f32) {
+pub(crate) fn frame_reach(opts: &Options, primary: &PixelFilter) -> (f32, f32) {
     let own = opts.displays.iter().map(|d| &d.params);
     let channels = opts.display_channels.iter().map(|c| &c.params);
     own.chain(channels)
@@ -194,7 +194,7 @@ pub(crate) fn develop_own_filters(
     let [sx0, sy0] = region.origin;
     let (sx1, sy1) = (sx0 + region.size[0] as i32, sy0 + region.size[1] as i32);
     for (c, &off) in layout.channels.iter().zip(&layout.offsets) {
-        let Some(filter) = c.filter else { continue };
+        let Some(filter) = &c.filter else { continue };
         let (rx, ry) = filter.radius();
         let span = off..off + c.components;
         let mut acc = vec![0.0f32; c.components];

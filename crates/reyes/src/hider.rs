@@ -65,7 +65,7 @@ impl<'f> Hider<'f> {
         let cam = &frame.camera;
         let film = Film::new(opts);
         // Geometry as far out as the widest pixel or display filter reaches.
-        let (rx, ry) = crate::aov::frame_reach(opts, film.filter);
+        let (rx, ry) = crate::aov::frame_reach(opts, &film.filter);
         let [cx0, cx1, cy0, cy1] = cam.crop;
         let margin = rx.max(ry) + 1.0;
         let region = [
