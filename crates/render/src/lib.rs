@@ -47,14 +47,15 @@ pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     hider.set_aovs(layout);
     let mut rendered = hider.render(&shading, settings.progress);
     rendered.stats.nonfinite = shading.nonfinite.load(Relaxed);
-    // Shading problems found while rendering (missing maps, unknown spaces), once each.
+    // Shading problems found while rendering (missing maps, unknown spaces), once each; then
+    // shaders that could not finish (runaway loops), which are errors.
+    let warnings = shading.warnings.messages().into_iter();
+    let errors = shading.warnings.errors().into_iter();
     rendered.warnings.extend(
-        shading
-            .warnings
-            .messages()
-            .into_iter()
-            .map(|message| Diagnostic {
-                severity: Severity::Warning,
+        (warnings.map(|m| (Severity::Warning, m)))
+            .chain(errors.map(|m| (Severity::Error, m)))
+            .map(|(severity, message)| Diagnostic {
+                severity,
                 span: illume_rib::Span::synthetic(),
                 request: None,
                 message,

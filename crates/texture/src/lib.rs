@@ -35,6 +35,7 @@ pub mod shading;
 mod shadow;
 pub mod shadowmap;
 mod texture;
+mod texels;
 pub mod texturelookup;
 pub mod txfile;
 pub mod wrapmode;
