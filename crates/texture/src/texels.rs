@@ -28,13 +28,14 @@ impl Texels {
 
     /// Copies `out.len()` values starting at sample index `i`, widened to `f32`.
     pub fn read(&self, i: usize, out: &mut [f32]) {
+        let n = out.len();
         match self {
             Texels::Half(v) => {
-                for (o, h) in out.iter_mut().zip(&v[i..i + out.len()]) {
+                for (o, h) in out.iter_mut().zip(&v[i..i + n]) {
                     *o = h.to_f32();
                 }
             }
-            Texels::Float(v) => out.copy_from_slice(&v[i..i + out.len()]),
+            Texels::Float(v) => out.copy_from_slice(&v[i..i + n]),
         }
     }
 }
