@@ -191,10 +191,11 @@ impl Exec<'_> {
                 if !self.runaway {
                     let at = line.map_or(String::new(), |(l, c)| format!(" (line {l}:{c})"));
                     let message = format!(
-                        "a loop{at} ran {iterations} times on one grid ({} in all loops; limits \
+                        "a loop{at} ran {} times on one grid ({} in all loops; limits \
                          {MAX_LOOP_ITERATIONS} per loop, {MAX_TOTAL_ITERATIONS} in all) and was \
                          stopped",
-                        self.loop_iterations
+                        iterations - 1,
+                        self.loop_iterations - 1
                     );
                     if !self.errors.contains(&message) {
                         self.errors.push(message);
