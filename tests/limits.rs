@@ -28,7 +28,11 @@ fn find(diags: &[Diagnostic], severity: Severity, needle: &str) -> String {
         .filter(|d| d.severity == severity && d.message.contains(needle))
         .map(|d| d.to_string())
         .collect();
-    assert_eq!(hits.len(), 1, "want one {severity:?} with `{needle}` in {diags:?}");
+    assert_eq!(
+        hits.len(),
+        1,
+        "want one {severity:?} with `{needle}` in {diags:?}"
+    );
     hits[0].clone()
 }
 
@@ -103,8 +107,12 @@ fn limits_vertices_option_applies_to_points_and_patch_meshes() {
         .filter(|d| d.severity == Severity::Error)
         .collect();
     assert_eq!(errors.len(), 2, "{errors:?}");
-    assert!(errors[0].to_string().starts_with("test.rib:3:1: error: Points: 11 vertices"));
-    assert!(errors[1].to_string().starts_with("test.rib:4:1: error: PatchMesh: 12 vertices"));
+    assert!(errors[0]
+        .to_string()
+        .starts_with("test.rib:3:1: error: Points: 11 vertices"));
+    assert!(errors[1]
+        .to_string()
+        .starts_with("test.rib:4:1: error: PatchMesh: 12 vertices"));
     assert_eq!(frames[0].primitives.len(), 1);
 }
 
@@ -144,7 +152,10 @@ fn render(bin: &Path, dir: &Path, file: &str) -> (i32, String) {
         .args(["-q", "--threads", "1", file])
         .output()
         .unwrap();
-    let code = out.status.code().expect("render exited by itself, not by a signal");
+    let code = out
+        .status
+        .code()
+        .expect("render exited by itself, not by a signal");
     (code, String::from_utf8_lossy(&out.stderr).into_owned())
 }
 
@@ -154,7 +165,11 @@ fn an_archive_that_reads_itself_ends_with_an_error_not_a_stack_overflow() {
         return; // skipped loudly; a failure under CI=true
     };
     let dir = scratch("archive");
-    std::fs::write(dir.join("self.rib"), "Sphere 1 -1 1 360\nReadArchive \"self.rib\"\n").unwrap();
+    std::fs::write(
+        dir.join("self.rib"),
+        "Sphere 1 -1 1 360\nReadArchive \"self.rib\"\n",
+    )
+    .unwrap();
     let scene = "Format 16 16 1\nDisplay \"out.tif\" \"file\" \"rgba\"\nWorldBegin\n\
                  ReadArchive \"self.rib\"\nWorldEnd\n";
     std::fs::write(dir.join("scene.rib"), scene).unwrap();
@@ -183,7 +198,10 @@ fn a_shader_that_loops_forever_is_stopped_with_an_error_naming_it() {
     let t = std::time::Instant::now();
     let (code, err) = render(&bin, &dir, "scene.rib");
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("error: shader `spin`: a loop (line 5:"), "{err}");
+    assert!(
+        err.contains("error: shader `spin`: a loop (line 5:"),
+        "{err}"
+    );
     assert!(err.contains("was stopped"), "{err}");
     // A generous bound on a 2-core machine: without the shared budget the nest runs 2³² times.
     assert!(t.elapsed().as_secs() < 120, "took {:?}", t.elapsed());

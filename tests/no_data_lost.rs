@@ -147,7 +147,9 @@ fn unwritable_displays_are_errors_naming_them_and_the_others_are_written() {
     };
     let dir = scratch("unwritable");
     std::fs::write(dir.join("locked.tif"), b"keep me").unwrap();
-    let mut perm = std::fs::metadata(dir.join("locked.tif")).unwrap().permissions();
+    let mut perm = std::fs::metadata(dir.join("locked.tif"))
+        .unwrap()
+        .permissions();
     perm.set_readonly(true);
     std::fs::set_permissions(dir.join("locked.tif"), perm).unwrap();
     let scene = "Format 16 16 1\nDisplay \"no/such/dir/a.tif\" \"file\" \"rgba\"\n\
@@ -158,7 +160,10 @@ fn unwritable_displays_are_errors_naming_them_and_the_others_are_written() {
     let (code, err) = render(&bin, &dir, "scene.rib");
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("no/such/dir/a.tif"), "{err}");
-    assert!(err.contains("locked.tif") && err.contains("read-only"), "{err}");
+    assert!(
+        err.contains("locked.tif") && err.contains("read-only"),
+        "{err}"
+    );
     assert_eq!(std::fs::read(dir.join("locked.tif")).unwrap(), b"keep me");
     for good in ["b.tif", "c.png"] {
         let img = illume_imageio::read_image(&dir.join(good)).unwrap();

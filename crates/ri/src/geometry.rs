@@ -21,8 +21,7 @@ impl Ri {
         if !self.world_active || !self.detail_visible() {
             return;
         }
-        if !crate::options::check_vertices(&self.options.limits, req, span, &mut self.diagnostics)
-        {
+        if !crate::options::check_vertices(&self.options.limits, req, span, &mut self.diagnostics) {
             return;
         }
         if let Some(m) = &self.motion {

@@ -108,6 +108,11 @@ fn main() {
     let dir = std::env::temp_dir().join(format!("illume-texture-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
 
+    if std::env::args().any(|a| a == "cache-pressure") {
+        cube_under_pressure(&build_cube(&dir));
+        let _ = std::fs::remove_dir_all(&dir);
+        return;
+    }
     let big = image(4096, 4096, pattern);
     let tx = dir.join("4k.tx");
     let opts = MakeOptions {
@@ -123,13 +128,6 @@ fn main() {
         secs,
         16.777216 / secs
     );
-
-    let cube = build_cube(&dir);
-    if std::env::args().any(|a| a == "cache-pressure") {
-        cube_under_pressure(&cube);
-        let _ = std::fs::remove_dir_all(&dir);
-        return;
-    }
 
     let cache = TextureCache::new(256 << 20);
     let name = tx.to_str().unwrap();
@@ -166,6 +164,7 @@ fn main() {
         );
         }
     }
+    let cube = build_cube(&dir);
     let cname = cube.to_str().unwrap();
     for blur in [0.0f32, 0.01, 0.1] {
         let o = LookupOptions {

@@ -10,8 +10,8 @@ mod hider;
 mod limits;
 mod user;
 
-pub use limits::{declared_vertices, Limits};
 pub(crate) use limits::check_vertices;
+pub use limits::{declared_vertices, Limits};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Projection {
