@@ -4,8 +4,8 @@
 //! lookup touches them and kept in a sharded map bounded by `Option "limits" "texturememory"`.
 //! Tiles stay in the file's precision (`half` for most `.tx` files: see `texels.rs`). The bound
 //! is global: when the resident total exceeds it, the shard that just grew drops its least
-//! recently used tiles down to a low-water mark below the bound, so one sort pays for many
-//! evictions (a per-shard share of the bound made unevenly hashed shards thrash while others
+//! recently used tiles (then the other shards theirs, if it has too few) down to a low-water
+//! mark below the bound, so one sort pays for many evictions (a per-shard share of the bound made unevenly hashed shards thrash while others
 //! sat half empty). Images that are not tiled
 //! textures (plain TIFF/PNG/scan-line EXR) are read whole, mip-mapped in memory, and used with a
 //! one-time warning. Failures (missing file, bad format) are remembered too, so a missing texture
@@ -394,31 +394,43 @@ impl TextureCache {
         self.peak.fetch_max(now, Ordering::Relaxed);
         let max = self.max_bytes.load(Ordering::Relaxed);
         if now > max {
-            self.evict(&mut shard, key, max - max / LOW_WATER_DIVISOR);
+            let target = max - max / LOW_WATER_DIVISOR;
+            evict(self, &mut shard, Some(key), target);
+            // A shard with nothing else to give: take from the others. `try_lock` only, since
+            // this thread holds its own shard (two threads locking in opposite orders would
+            // deadlock); a busy shard is skipped, the bound is met on a later miss.
+            for k in 1..SHARDS {
+                if self.resident.load(Ordering::Relaxed) <= target {
+                    break;
+                }
+                if let Ok(mut other) = self.shards[(shard_index + k) % SHARDS].try_lock() {
+                    evict(self, &mut other, None, target);
+                }
+            }
         }
         Ok(tile)
     }
+}
 
-    /// Drops the least recently used tiles of `shard` (never `keep`, the tile being returned)
-    /// until the cache holds at most `target` bytes or the shard has nothing else to give.
-    fn evict(&self, shard: &mut Shard, keep: TileKey, target: usize) {
-        let mut by_age: Vec<(u64, TileKey)> = shard
-            .map
-            .iter()
-            .filter(|(k, _)| **k != keep)
-            .map(|(k, (_, t))| (*t, *k))
-            .collect();
-        by_age.sort_unstable();
-        for (_, k) in by_age {
-            if self.resident.load(Ordering::Relaxed) <= target {
-                break;
-            }
-            if let Some((t, _)) = shard.map.remove(&k) {
-                let b = t.data.bytes();
-                shard.bytes -= b;
-                self.resident.fetch_sub(b, Ordering::Relaxed);
-                self.evictions.fetch_add(1, Ordering::Relaxed);
-            }
+/// Drops the least recently used tiles of `shard` (never `keep`, the tile being returned)
+/// until `cache` holds at most `target` bytes or the shard has nothing else to give.
+fn evict(cache: &TextureCache, shard: &mut Shard, keep: Option<TileKey>, target: usize) {
+    let mut by_age: Vec<(u64, TileKey)> = shard
+        .map
+        .iter()
+        .filter(|(k, _)| Some(**k) != keep)
+        .map(|(k, (_, t))| (*t, *k))
+        .collect();
+    by_age.sort_unstable();
+    for (_, k) in by_age {
+        if cache.resident.load(Ordering::Relaxed) <= target {
+            break;
+        }
+        if let Some((t, _)) = shard.map.remove(&k) {
+            let b = t.data.bytes();
+            shard.bytes -= b;
+            cache.resident.fetch_sub(b, Ordering::Relaxed);
+            cache.evictions.fetch_add(1, Ordering::Relaxed);
         }
     }
 }
