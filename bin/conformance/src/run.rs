@@ -132,6 +132,7 @@ fn spawn(
     let mut render = Command::new(&cfg.render);
     render
         .current_dir(workdir)
+        .env("PYTHONPATH", python_path())
         .arg("-q")
         .arg("--threads")
         .arg(cfg.threads.to_string())
@@ -147,6 +148,7 @@ fn spawn(
     }
     let mut generator = Command::new("python3")
         .current_dir(workdir)
+        .env("PYTHONPATH", python_path())
         .arg(&job.spec.rib)
         .stdout(Stdio::piped())
         .stderr(Stdio::from(log_file_append(log)?))
@@ -164,6 +166,18 @@ fn spawn(
             Err(start_err(&cfg.render, e))
         }
     }
+}
+
+/// `PYTHONPATH` for a job's processes: `pyshim/` (stand-ins for the Python 2-era `cgkit.ri`
+/// and old PIL modules that the suite's RunProgram helpers import; see its README) before
+/// whatever the caller had.
+fn python_path() -> std::ffi::OsString {
+    let shim = Path::new(env!("CARGO_MANIFEST_DIR")).join("pyshim");
+    let mut paths = vec![shim];
+    if let Some(old) = std::env::var_os("PYTHONPATH") {
+        paths.extend(std::env::split_paths(&old));
+    }
+    std::env::join_paths(paths).unwrap_or_default()
 }
 
 fn log_file_append(log: &Path) -> Result<File, String> {
