@@ -5,9 +5,13 @@
 //! `Option "searchpath" "shader"` in order (relative entries against the working directory;
 //! the default is `.`), then in the directory of the RIB file that made the request. The first
 //! file found wins, over the built-in shader of the same name too; when none is found the
-//! built-in (or `defaultsurface`) is used. A file is compiled on first use and cached by path
-//! and modification time for the rest of the run; compile errors are returned (the renderer
-//! warns once with their `file:line:col` and falls back to the built-in).
+//! built-in (or `defaultsurface`) is used. `#include "x.h"` is searched next to the including
+//! file, then in those same directories (searchpath, then the RIB's directory): shader
+//! libraries keep their headers beside or above their `.sl` files (K-3D's `k3d_*.h`, Advanced
+//! RenderMan's `noises.h`), and a renderer that compiles on first use has no `slc -I` to be
+//! told where. A file is compiled on first use and cached by path, include directories and
+//! modification time for the rest of the run; compile errors are returned (the renderer warns
+//! once with their `file:line:col` and falls back to the built-in).
 use crate::exec::CompiledShader;
 use illume_sl::ast::{Program, ShaderId};
 use illume_sl::types::ShaderKind;
@@ -22,7 +26,7 @@ type Compiled = Result<Arc<Program>, String>;
 /// A cache of compiled `.sl` files keyed by path and modification time.
 #[derive(Default)]
 pub struct ShaderLibrary {
-    cache: Mutex<HashMap<PathBuf, (Option<SystemTime>, Compiled)>>,
+    cache: Mutex<HashMap<(PathBuf, Vec<PathBuf>), (Option<SystemTime>, Compiled)>>,
 }
 
 impl ShaderLibrary {
@@ -57,19 +61,21 @@ impl ShaderLibrary {
             .find(|p| p.is_file())
     }
 
-    /// Compiles `path` (or returns the cached result while its mtime is unchanged).
-    pub fn compile(&self, path: &Path) -> Compiled {
+    /// Compiles `path` with `#include` searched in `include_dirs` after the including file's
+    /// directory (or returns the cached result while its mtime is unchanged).
+    pub fn compile(&self, path: &Path, include_dirs: &[PathBuf]) -> Compiled {
         let mtime = std::fs::metadata(path).and_then(|m| m.modified()).ok();
+        let key = (path.to_path_buf(), include_dirs.to_vec());
         if let Ok(cache) = self.cache.lock() {
-            if let Some((t, c)) = cache.get(path) {
+            if let Some((t, c)) = cache.get(&key) {
                 if *t == mtime {
                     return c.clone();
                 }
             }
         }
-        let result = compile_file(path).map(Arc::new);
+        let result = crate::frontend::compile_path(path, include_dirs).map(Arc::new);
         if let Ok(mut cache) = self.cache.lock() {
-            cache.insert(path.to_path_buf(), (mtime, result.clone()));
+            cache.insert(key, (mtime, result.clone()));
         }
         result
     }
@@ -84,7 +90,12 @@ impl ShaderLibrary {
         request_dir: Option<&Path>,
     ) -> Option<Result<CompiledShader, String>> {
         let path = Self::find(name, searchpath, request_dir)?;
-        Some(self.compile(&path).and_then(|program| {
+        let include_dirs: Vec<PathBuf> = searchpath
+            .iter()
+            .map(PathBuf::from)
+            .chain(request_dir.map(Path::to_path_buf))
+            .collect();
+        Some(self.compile(&path, &include_dirs).and_then(|program| {
             pick_shader(&program, kind, name)
                 .map(|id| CompiledShader {
                     program: program.clone(),
@@ -119,8 +130,8 @@ pub fn pick_shader(program: &Program, kind: ShaderKind, name: &str) -> Option<Sh
         .map(|(k, _)| ShaderId(k as u32))
 }
 
-/// Compiles one `.sl` file with the `illume-sl` front end; errors rendered as
-/// `file:line:col: error: …` lines.
+/// Compiles one `.sl` file with the `illume-sl` front end (`#include` next to the file only);
+/// errors rendered as `file:line:col: error: …` lines.
 pub fn compile_file(path: &Path) -> Result<Program, String> {
-    crate::frontend::compile_path(path)
+    crate::frontend::compile_path(path, &[])
 }

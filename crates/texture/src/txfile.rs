@@ -205,8 +205,7 @@ impl TiledExr {
         }
         let table_start = header_end(&file, len).map_err(fmt)?;
         let count = header.chunk_count;
-        // A hostile header can claim 2³² tiles: refuse before allocating their offset table
-        // (it must fit in the file), and keep textures to the readers' per-side limit.
+        // Textures keep to the image readers' per-side limit (issue 23: limits on read).
         let (w, h) = (header.layer_size.0, header.layer_size.1);
         let max = illume_imageio::MAX_DIMENSION as usize;
         if w > max || h > max {
@@ -214,12 +213,17 @@ impl TiledExr {
                 "expected at most {max} texels per side, found {w}×{h}"
             )));
         }
-        if (count as u64).saturating_mul(8) > len.saturating_sub(table_start) {
-            return Err(fmt(format!(
-                "the offset table of {count} tiles is larger than the file ({len} bytes)"
-            )));
-        }
-        let mut raw = vec![0u8; count * 8];
+        // The header's tile count sizes the offset table: check it against the file before
+        // allocating, so a corrupt size is an error rather than an abort.
+        let table_len = count
+            .checked_mul(8)
+            .filter(|&n| table_start.saturating_add(n as u64) <= len)
+            .ok_or_else(|| {
+                fmt(format!(
+                    "the offset table of {count} tiles runs past the end of the file ({len} bytes)"
+                ))
+            })?;
+        let mut raw = vec![0u8; table_len];
         file.read_exact_at(&mut raw, table_start).map_err(io)?;
         let offsets: Vec<u64> = raw
             .chunks_exact(8)
@@ -228,7 +232,12 @@ impl TiledExr {
         let mut sorted = offsets.clone();
         sorted.sort_unstable();
         sorted.push(len);
+        // A chunk runs to the next chunk or the end of the file; an offset past the end (a
+        // corrupt table) has no bytes, so it reads as a missing tile instead of a huge buffer.
         let length_of = |o: u64| -> usize {
+            if o >= len {
+                return 0;
+            }
             let i = sorted.partition_point(|&x| x <= o);
             (sorted[i.min(sorted.len() - 1)].saturating_sub(o)) as usize
         };

@@ -53,7 +53,12 @@ impl PixelFormat {
         }
         check_size(path, width, height, spp)?;
         let bps_all = ifd.uints(TAG_BITS_PER_SAMPLE, 64)?.unwrap_or(vec![1]);
-        let bits = bps_all[0];
+        let Some(&bits) = bps_all.first() else {
+            return Err(format_error(
+                path,
+                "TIFF: expected a BitsPerSample value, found an empty BitsPerSample tag",
+            ));
+        };
         if bps_all.iter().any(|&b| b != bits) {
             return Err(format_error(
                 path,
