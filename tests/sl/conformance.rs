@@ -411,7 +411,7 @@ fn every_conformance_shader_gives_its_expected_value() {
     let mut failures = Vec::new();
     for path in &files {
         let name = path.file_stem().unwrap().to_str().unwrap().to_string();
-        let program = match library.compile(path) {
+        let program = match library.compile(path, &[]) {
             Ok(p) => p,
             Err(e) => {
                 failures.push(format!("{name}: does not compile:\n{e}"));

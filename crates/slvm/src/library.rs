@@ -23,10 +23,13 @@ use std::time::SystemTime;
 /// The outcome of compiling one file: the program, or the rendered diagnostics.
 type Compiled = Result<Arc<Program>, String>;
 
+/// A file and the include directories it was compiled with.
+type CacheKey = (PathBuf, Vec<PathBuf>);
+
 /// A cache of compiled `.sl` files keyed by path and modification time.
 #[derive(Default)]
 pub struct ShaderLibrary {
-    cache: Mutex<HashMap<(PathBuf, Vec<PathBuf>), (Option<SystemTime>, Compiled)>>,
+    cache: Mutex<HashMap<CacheKey, (Option<SystemTime>, Compiled)>>,
 }
 
 impl ShaderLibrary {

@@ -41,10 +41,9 @@ fn a_header_outside_every_searchpath_directory_is_an_error_naming_it() {
     let root = library("missing");
     let path = vec![root.join("surface").display().to_string()];
     let loaded = ShaderLibrary::new().load("striped", ShaderKind::Surface, &path, None);
-    let err = loaded
-        .expect("striped.sl is on the searchpath")
-        .err()
-        .expect("pattern.h is not next to the shader nor on the searchpath");
+    let Err(err) = loaded.expect("striped.sl is on the searchpath") else {
+        panic!("pattern.h is not next to the shader nor on the searchpath");
+    };
     assert!(err.contains("pattern.h"), "{err}");
     assert!(err.contains("striped.sl:1:"), "{err}");
     let _ = std::fs::remove_dir_all(&root);
