@@ -1,6 +1,7 @@
 //! `render`: RIB files in, images out. A thin layer over `illume-ri` and `illume-render`.
 //!
-//! Exit codes: 0 clean, 1 rendered with errors, 2 usage error or fatal.
+//! Exit codes: 0 clean, 1 rendered with errors, 2 usage error or fatal, 130 interrupted
+//! (SIGINT, SIGTERM or SIGHUP: displays being written are removed, none is left half written).
 #![forbid(unsafe_code)]
 
 use clap::Parser;
@@ -58,7 +59,22 @@ fn peak_memory_kb() -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
+/// Stops the process on SIGINT/SIGTERM/SIGHUP without leaving a half-written display: every
+/// display goes through a temporary file renamed when complete, and the handler removes the
+/// temporary files still open (the frame being rendered is lost, earlier frames are kept).
+fn install_interrupt_handler() {
+    let installed = ctrlc::set_handler(|| {
+        let n = illume_imageio::remove_temporary_files();
+        eprintln!("render: interrupted; {n} partly written display(s) removed");
+        std::process::exit(130);
+    });
+    if let Err(e) = installed {
+        eprintln!("render: warning: no interrupt handler ({e}); an interrupted write may leave a temporary file");
+    }
+}
+
 fn main() -> ExitCode {
+    install_interrupt_handler();
     let args = match Args::try_parse() {
         Ok(a) => a,
         Err(e) => {

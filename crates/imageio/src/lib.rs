@@ -51,7 +51,7 @@ mod raster_limits;
 mod tiff_file;
 mod zfile;
 
-pub use atomic_write::{write_atomically, AtomicFile};
+pub use atomic_write::{remove_temporary_files, write_atomically, AtomicFile};
 pub use framebuffer::framebuffer_path;
 pub use openexr::world_to_ndc;
 pub use quantize::{dither_noise, SampleDepth};

@@ -76,15 +76,16 @@ fn prepare<'f>(frame: &'f Frame, settings: &RenderSettings<'f>) -> (Hider<'f>, F
 /// Adds what the shading stage counted and found to the hider's report.
 fn finish(mut rendered: Rendered, shading: &FrameShading) -> Rendered {
     rendered.stats.nonfinite = shading.nonfinite.load(Relaxed);
-    // Shading problems found while rendering (missing maps, unknown spaces), once each.
+    // Shading problems found while rendering (missing maps, unknown spaces), once each; then
+    // shaders that could not finish (runaway loops), which are errors.
+    let warnings = shading.warnings.messages().into_iter();
+    let errors = shading.warnings.errors().into_iter();
     rendered.warnings.extend(
-        shading
-            .warnings
-            .messages()
-            .into_iter()
-            .map(|message| Diagnostic {
-                severity: Severity::Warning,
-                kind: illume_ri::ErrorKind::MissingData,
+        (warnings.map(|m| (Severity::Warning, illume_ri::ErrorKind::MissingData, m)))
+            .chain(errors.map(|m| (Severity::Error, illume_ri::ErrorKind::Limit, m)))
+            .map(|(severity, kind, message)| Diagnostic {
+                severity,
+                kind,
                 span: illume_rib::Span::synthetic(),
                 request: None,
                 message,

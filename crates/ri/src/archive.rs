@@ -8,10 +8,6 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-/// Nested reads (archives including archives) beyond this depth are an error, not a stack
-/// overflow.
-const MAX_NESTING: usize = 64;
-
 /// How the requests of an archive, an object instance or a procedural relate to the graphics
 /// state of the request that brought them in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,12 +111,17 @@ impl Ri {
     /// Runs `body` (the requests of an archive, instance or procedural) one nesting level
     /// deeper, inside an attribute block unless it is inlined.
     fn nested(&mut self, span: &Span, what: &str, scope: Scope, body: impl FnOnce(&mut Ri)) {
-        if self.nesting >= MAX_NESTING {
+        // Nested reads (an archive that reads itself) beyond the limit are an error, not a
+        // stack overflow.
+        let max = self.options.limits.nesting as usize;
+        if self.nesting >= max {
             self.diagnostics.error_kind(
                 crate::ErrorKind::Limit,
                 span,
                 what,
-                "nested too deeply (recursive archive?)",
+                format!(
+                    "nested more than Option \"limits\" \"nesting\" {max} levels deep (recursive archive?); not read"
+                ),
             );
             return;
         }

@@ -22,6 +22,9 @@ impl Ri {
         if !self.world_active || !self.detail_visible() {
             return;
         }
+        if !crate::options::check_vertices(&self.options.limits, req, span, &mut self.diagnostics) {
+            return;
+        }
         if let Some(m) = &self.motion {
             // One key of a deforming primitive, built under the transform at its time.
             let ctm = match (m.times.get(m.geometry.len()), &self.ctm_motion) {

@@ -31,6 +31,9 @@ pub use declarations::Declarations;
 pub use diagnostic::{Diagnostic, Diagnostics, ErrorKind, Severity};
 pub use frame::{Frame, FramePrimitive};
 pub use motion::{MotionKeys, MovingTransform};
-pub use options::{DepthFilter, DisplayChannel, DisplaySpec, Options, Projection, QuantizeSpec};
+pub use options::{
+    declared_vertices, DepthFilter, DisplayChannel, DisplaySpec, Limits, Options, Projection,
+    QuantizeSpec,
+};
 pub use solid::{SolidNode, SolidOp, SolidTree};
 pub use state::{from_rib_diagnostic, RequestSource, Ri, StreamParser, TextureMaker};

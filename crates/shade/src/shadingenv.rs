@@ -43,12 +43,18 @@ impl SpecularModel {
 /// Where shading warnings go (missing maps, unknown spaces…). Implementations de-duplicate.
 pub trait WarningSink: Send + Sync {
     fn warn(&self, message: &str);
+    /// A shader that could not finish (a runaway loop stopped by a limit): the frame renders
+    /// but is wrong, so `render` counts it as an error. Sinks without a separate list warn.
+    fn error(&self, message: &str) {
+        self.warn(message)
+    }
 }
 
 /// A [`WarningSink`] that keeps each distinct message once, in order of first occurrence.
 #[derive(Debug, Default)]
 pub struct WarnOnce {
     seen: Mutex<(HashSet<String>, Vec<String>)>,
+    errors: Mutex<Vec<String>>,
 }
 
 impl WarnOnce {
@@ -60,6 +66,11 @@ impl WarnOnce {
     pub fn messages(&self) -> Vec<String> {
         self.seen.lock().map(|g| g.1.clone()).unwrap_or_default()
     }
+
+    /// The distinct errors so far (see [`WarningSink::error`]), first occurrence first.
+    pub fn errors(&self) -> Vec<String> {
+        self.errors.lock().map(|g| g.clone()).unwrap_or_default()
+    }
 }
 
 impl WarningSink for WarnOnce {
@@ -67,6 +78,14 @@ impl WarningSink for WarnOnce {
         if let Ok(mut g) = self.seen.lock() {
             if g.0.insert(message.to_string()) {
                 g.1.push(message.to_string());
+            }
+        }
+    }
+
+    fn error(&self, message: &str) {
+        if let Ok(mut g) = self.errors.lock() {
+            if !g.iter().any(|e| e == message) {
+                g.push(message.to_string());
             }
         }
     }
@@ -148,6 +167,13 @@ impl<'a> ShadingEnv<'a> {
     pub fn warn(&self, message: &str) {
         if let Some(w) = self.warnings {
             w.warn(message);
+        }
+    }
+
+    /// Reports an error (see [`WarningSink::error`]) to the sink, if any.
+    pub fn error(&self, message: &str) {
+        if let Some(w) = self.warnings {
+            w.error(message);
         }
     }
 

@@ -148,6 +148,9 @@ impl SlInstance {
         for p in &exec.problems {
             env.warn(&format!("shader `{name}`: {p}"));
         }
+        for e in &exec.errors {
+            env.error(&format!("shader `{name}`: {e}"));
+        }
     }
 
     /// Runs a surface shader over `grid` with `lights` already run for this grid: writes

@@ -1,14 +1,19 @@
 //! The texture cache: one per render, shared by every thread (`Sync`).
 //!
 //! Files are opened once (header and offset table only); tiles are read lazily the first time a
-//! lookup touches them and kept in a sharded map bounded by `Option "limits" "texturememory"`,
-//! evicting the least recently used tiles of the shard that overflows. Images that are not tiled
+//! lookup touches them and kept in a sharded map bounded by `Option "limits" "texturememory"`.
+//! Tiles stay in the file's precision (`half` for most `.tx` files: see `texels.rs`). The bound
+//! is global: when the resident total exceeds it, the shard that just grew drops its least
+//! recently used tiles (then the other shards theirs, if it has too few) down to a low-water
+//! mark below the bound, so one sort pays for many evictions (a per-shard share of the bound made unevenly hashed shards thrash while others
+//! sat half empty). Images that are not tiled
 //! textures (plain TIFF/PNG/scan-line EXR) are read whole, mip-mapped in memory, and used with a
 //! one-time warning. Failures (missing file, bad format) are remembered too, so a missing texture
 //! costs one `open` per render, and the caller warns once.
 
 use crate::build::image_to_level;
 use crate::mipmap::{build_pyramid, Level, Resampler};
+use crate::texels::Texels;
 use crate::txfile::TiledExr;
 use crate::wrapmode::{parse_wrapmodes, WrapMode};
 use crate::{FilterKind, TextureError};
@@ -107,10 +112,10 @@ pub(crate) struct TexFile {
     pub backing: Backing,
 }
 
-/// A decoded tile: interleaved f32, stored channel order.
+/// A decoded tile: interleaved texels, stored channel order.
 pub(crate) struct Tile {
     pub w: usize,
-    pub data: Vec<f32>,
+    pub data: Texels,
 }
 
 type TileKey = (u64, u32, u32, u32);
@@ -121,6 +126,10 @@ struct Shard {
 }
 
 const SHARDS: usize = 16;
+
+/// Eviction frees down to `max − max / LOW_WATER_DIVISOR` (1/256 below the bound), so the sort
+/// of a shard's tiles by age is paid once per many evicted tiles, not once per miss.
+const LOW_WATER_DIVISOR: usize = 256;
 
 /// An opened file, or why it could not be opened (remembered so failures cost one `open`).
 type FileEntry = Result<Arc<TexFile>, Arc<TextureError>>;
@@ -369,7 +378,7 @@ impl TextureCache {
             }
         }
         let (w, _h, data) = tx.read_tile(level, x, y)?;
-        let bytes = data.len() * 4;
+        let bytes = data.bytes();
         let tile = Arc::new(Tile { w, data });
         self.tiles_read.fetch_add(1, Ordering::Relaxed);
         self.bytes_read.fetch_add(bytes as u64, Ordering::Relaxed);
@@ -383,23 +392,46 @@ impl TextureCache {
         shard.bytes += bytes;
         let now = self.resident.fetch_add(bytes, Ordering::Relaxed) + bytes;
         self.peak.fetch_max(now, Ordering::Relaxed);
-        let budget = self.max_bytes.load(Ordering::Relaxed) / SHARDS;
-        while shard.bytes > budget && shard.map.len() > 1 {
-            let oldest = shard
-                .map
-                .iter()
-                .filter(|(k, _)| **k != key)
-                .min_by_key(|(_, (_, t))| *t)
-                .map(|(k, _)| *k);
-            let Some(k) = oldest else { break };
-            if let Some((t, _)) = shard.map.remove(&k) {
-                let b = t.data.len() * 4;
-                shard.bytes -= b;
-                self.resident.fetch_sub(b, Ordering::Relaxed);
-                self.evictions.fetch_add(1, Ordering::Relaxed);
+        let max = self.max_bytes.load(Ordering::Relaxed);
+        if now > max {
+            let target = max - max / LOW_WATER_DIVISOR;
+            evict(self, &mut shard, Some(key), target);
+            // A shard with nothing else to give: take from the others. `try_lock` only, since
+            // this thread holds its own shard (two threads locking in opposite orders would
+            // deadlock); a busy shard is skipped, the bound is met on a later miss.
+            for k in 1..SHARDS {
+                if self.resident.load(Ordering::Relaxed) <= target {
+                    break;
+                }
+                if let Ok(mut other) = self.shards[(shard_index + k) % SHARDS].try_lock() {
+                    evict(self, &mut other, None, target);
+                }
             }
         }
         Ok(tile)
+    }
+}
+
+/// Drops the least recently used tiles of `shard` (never `keep`, the tile being returned)
+/// until `cache` holds at most `target` bytes or the shard has nothing else to give.
+fn evict(cache: &TextureCache, shard: &mut Shard, keep: Option<TileKey>, target: usize) {
+    let mut by_age: Vec<(u64, TileKey)> = shard
+        .map
+        .iter()
+        .filter(|(k, _)| Some(**k) != keep)
+        .map(|(k, (_, t))| (*t, *k))
+        .collect();
+    by_age.sort_unstable();
+    for (_, k) in by_age {
+        if cache.resident.load(Ordering::Relaxed) <= target {
+            break;
+        }
+        if let Some((t, _)) = shard.map.remove(&k) {
+            let b = t.data.bytes();
+            shard.bytes -= b;
+            cache.resident.fetch_sub(b, Ordering::Relaxed);
+            cache.evictions.fetch_add(1, Ordering::Relaxed);
+        }
     }
 }
 

@@ -34,6 +34,7 @@ mod sampler;
 pub mod shading;
 mod shadow;
 pub mod shadowmap;
+mod texels;
 mod texture;
 pub mod texturelookup;
 pub mod txfile;

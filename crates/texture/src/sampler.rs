@@ -54,7 +54,7 @@ impl<'a> Sampler<'a> {
                     }
                 };
                 let i = ((y % th) * tile.w + (x % tw)) * self.file.nch;
-                out[..nch].copy_from_slice(&tile.data[i..i + nch]);
+                tile.data.read(i, &mut out[..nch]);
                 Ok(())
             }
         }

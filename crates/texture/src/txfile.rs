@@ -6,6 +6,7 @@
 //! tile-granular: the header and offset table are parsed once, and each tile is fetched with one
 //! positioned read and decompressed on demand, so a lookup touches only the tiles it needs.
 
+use crate::texels::Texels;
 use crate::TextureError;
 use exr::block::chunk::Chunk;
 use exr::block::UncompressedBlock;
@@ -204,6 +205,14 @@ impl TiledExr {
         }
         let table_start = header_end(&file, len).map_err(fmt)?;
         let count = header.chunk_count;
+        // Textures keep to the image readers' per-side limit (issue 23: limits on read).
+        let (w, h) = (header.layer_size.0, header.layer_size.1);
+        let max = illume_imageio::MAX_DIMENSION as usize;
+        if w > max || h > max {
+            return Err(fmt(format!(
+                "expected at most {max} texels per side, found {w}×{h}"
+            )));
+        }
         // The header's tile count sizes the offset table: check it against the file before
         // allocating, so a corrupt size is an error rather than an abort.
         let table_len = count
@@ -232,7 +241,6 @@ impl TiledExr {
             let i = sorted.partition_point(|&x| x <= o);
             (sorted[i.min(sorted.len() - 1)].saturating_sub(o)) as usize
         };
-        let (w, h) = (header.layer_size.0, header.layer_size.1);
         let tile = (desc.tile_size.0, desc.tile_size.1);
         let nlevels = match desc.level_mode {
             exr::meta::attribute::LevelMode::Singular => 1,
@@ -336,14 +344,15 @@ impl TiledExr {
         self.levels[l].0.div_ceil(self.tile.0)
     }
 
-    /// Reads and decodes one tile: interleaved f32 in file channel order, `tw·th` texels where
-    /// `(tw, th)` is the tile's real (possibly clipped) size.
+    /// Reads and decodes one tile: interleaved texels in file channel order, `tw·th` texels where
+    /// `(tw, th)` is the tile's real (possibly clipped) size; kept as `half` when every channel
+    /// is `half` (see [`Texels`]).
     pub fn read_tile(
         &self,
         level: usize,
         tx: usize,
         ty: usize,
-    ) -> Result<(usize, usize, Vec<f32>), TextureError> {
+    ) -> Result<(usize, usize, Texels), TextureError> {
         let fmt = |message: String| TextureError::Format {
             path: self.path.clone(),
             message,
@@ -373,31 +382,44 @@ impl TiledExr {
         })?;
         let (tw, th) = (block.index.pixel_size.0, block.index.pixel_size.1);
         let nch = self.channels.len();
+        let short = || fmt("short tile".into());
+        let all_half = self
+            .channels
+            .iter()
+            .all(|(_, t)| matches!(t, SampleType::F16));
+        let data = &block.data;
+        if all_half {
+            // Scan lines hold each channel's row in turn; the cache wants texels interleaved.
+            let mut out = vec![f16::ZERO; tw * th * nch];
+            let mut rows = data.chunks_exact(2);
+            for y in 0..th {
+                for c in 0..nch {
+                    for x in 0..tw {
+                        let b = rows.next().ok_or_else(short)?;
+                        out[(y * tw + x) * nch + c] = f16::from_ne_bytes([b[0], b[1]]);
+                    }
+                }
+            }
+            return Ok((tw, th, Texels::Half(out)));
+        }
         let mut out = vec![0.0f32; tw * th * nch];
         let mut pos = 0usize;
-        let data = &block.data;
         for y in 0..th {
             for (c, (_, ty)) in self.channels.iter().enumerate() {
                 for x in 0..tw {
                     let v = match ty {
                         SampleType::F16 => {
-                            let b = data
-                                .get(pos..pos + 2)
-                                .ok_or_else(|| fmt("short tile".into()))?;
+                            let b = data.get(pos..pos + 2).ok_or_else(short)?;
                             pos += 2;
                             f16::from_ne_bytes([b[0], b[1]]).to_f32()
                         }
                         SampleType::F32 => {
-                            let b = data
-                                .get(pos..pos + 4)
-                                .ok_or_else(|| fmt("short tile".into()))?;
+                            let b = data.get(pos..pos + 4).ok_or_else(short)?;
                             pos += 4;
                             f32::from_ne_bytes([b[0], b[1], b[2], b[3]])
                         }
                         SampleType::U32 => {
-                            let b = data
-                                .get(pos..pos + 4)
-                                .ok_or_else(|| fmt("short tile".into()))?;
+                            let b = data.get(pos..pos + 4).ok_or_else(short)?;
                             pos += 4;
                             u32::from_ne_bytes([b[0], b[1], b[2], b[3]]) as f32
                         }
@@ -406,7 +428,7 @@ impl TiledExr {
                 }
             }
         }
-        Ok((tw, th, out))
+        Ok((tw, th, Texels::Float(out)))
     }
 }
 

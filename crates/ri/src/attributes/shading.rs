@@ -20,8 +20,19 @@ impl Ri {
             Opacity(c) => self.attrs().opacity = [c[0], c[1], c[2]],
             TextureCoordinates(tc) => self.attrs().texture_coordinates = tc,
             ShadingRate(r) => {
-                if r > 0.0 {
+                let floor = self.options.limits.min_shading_rate;
+                if r >= floor {
                     self.attrs().shading_rate = r;
+                } else if r > 0.0 {
+                    // A rate of 1e-9 would dice every surface into ~10⁹ micropolygons per pixel.
+                    self.diagnostics.warn(
+                        span,
+                        &name,
+                        format!(
+                            "{r} is below Option \"limits\" \"shadingrate\" {floor}; clamped to {floor}"
+                        ),
+                    );
+                    self.attrs().shading_rate = floor;
                 } else {
                     self.diagnostics.error(
                         span,

@@ -31,14 +31,18 @@ impl Options {
                 } else {
                     1.0
                 };
-                if xres > 65535 || yres > 65535 {
+                let (x, y) = o.limits.fit_resolution(o.xres, o.yres);
+                if (x, y) != (o.xres, o.yres) {
                     diagnostics.error(
                         span,
                         &name,
-                        format!("resolution {xres}×{yres} is too large"),
+                        format!(
+                            "resolution {xres}×{yres} exceeds Option \"limits\" \"resolution\" {} \
+                             or \"pixels\" {}: rendering {x}×{y} instead",
+                            o.limits.resolution, o.limits.pixels
+                        ),
                     );
-                    o.xres = o.xres.min(65535);
-                    o.yres = o.yres.min(65535);
+                    (o.xres, o.yres) = (x, y);
                 }
             }
             FrameAspectRatio(a) => {

@@ -18,10 +18,18 @@ impl Options {
         match req {
             PixelVariance(v) => o.pixel_variance = v,
             PixelSamples { x, y } => {
+                // `as` saturates: NaN becomes 0 (then 1), 1e30 becomes u32::MAX (then clamped).
                 o.pixel_samples = [x.round().max(1.0) as u32, y.round().max(1.0) as u32];
-                if o.pixel_samples[0] > 64 || o.pixel_samples[1] > 64 {
-                    diagnostics.warn(span, &name, "more than 64 samples per axis; clamped to 64");
-                    o.pixel_samples = o.pixel_samples.map(|s| s.min(64));
+                let max = o.limits.pixel_samples;
+                if o.pixel_samples[0] > max || o.pixel_samples[1] > max {
+                    diagnostics.warn(
+                        span,
+                        &name,
+                        format!(
+                            "{x}×{y} exceeds Option \"limits\" \"pixelsamples\" {max}; clamped to {max} per axis"
+                        ),
+                    );
+                    o.pixel_samples = o.pixel_samples.map(|s| s.min(max));
                 }
             }
             PixelFilter {

@@ -7,7 +7,11 @@ use illume_rib::{ParamList, Request, Span};
 mod camera;
 mod display;
 mod hider;
+mod limits;
 mod user;
+
+pub(crate) use limits::check_vertices;
+pub use limits::{declared_vertices, Limits};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Projection {
@@ -95,6 +99,8 @@ pub struct Options {
     pub eye_splits: u32,
     /// Kilobytes, as PRMan's `texturememory`.
     pub texture_memory: u32,
+    /// The other `Option "limits"` values (image size, samples, vertices, nesting, …).
+    pub limits: Limits,
     pub shader_path: Vec<String>,
     pub texture_path: Vec<String>,
     pub archive_path: Vec<String>,
@@ -153,6 +159,7 @@ impl Default for Options {
             grid_size: 256,
             eye_splits: 10,
             texture_memory: 8192,
+            limits: Limits::default(),
             shader_path: vec![".".into()],
             texture_path: vec![".".into()],
             archive_path: vec![".".into()],

@@ -33,6 +33,7 @@ impl Options {
                 ("limits", "texturememory") if f.first().is_some_and(|&g| g >= 0.0) => {
                     o.texture_memory = f[0] as u32
                 }
+                ("limits", limit) if o.limits.set(limit, &f, span, diagnostics) => {}
                 (
                     "searchpath",
                     kind @ ("shader" | "texture" | "archive" | "resource" | "procedural"),

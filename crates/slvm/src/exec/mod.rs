@@ -41,8 +41,12 @@ pub fn zero_of(ty: Type) -> Value {
     }
 }
 
-/// See `exec_loop`.
+/// Iterations one loop may run on one grid (see `exec_loop`).
 const MAX_LOOP_ITERATIONS: u32 = 1 << 16;
+
+/// Iterations all loops of one shader run may take together: nested loops that each stay
+/// under [`MAX_LOOP_ITERATIONS`] can still multiply into hours.
+const MAX_TOTAL_ITERATIONS: u64 = 1 << 22;
 
 /// Index of a global in [`Global::ALL`].
 fn gidx(g: Global) -> usize {
@@ -99,6 +103,14 @@ pub struct Exec<'a> {
     pub(crate) random_site: u32,
     /// Errors met while running (unknown built-ins, bad spaces), reported once by the caller.
     pub(crate) problems: Vec<String>,
+    /// Runs that could not complete (a loop stopped by the iteration limits): errors, not
+    /// warnings, since the shaded result is wrong.
+    pub(crate) errors: Vec<String>,
+    /// Loop iterations taken so far in this run, against [`MAX_TOTAL_ITERATIONS`].
+    loop_iterations: u64,
+    /// Set when a loop hit a limit: every enclosing loop stops too, so a runaway nest costs at
+    /// most one limit's worth of iterations.
+    runaway: bool,
     /// What message passing to the primitive's other shaders can read.
     pub(crate) messages: Messages,
     /// Lights at other points than the grid's (volume shaders' `illuminance(Pmarch)`).
@@ -151,6 +163,9 @@ impl<'a> Exec<'a> {
             emission: Emission::default(),
             random_site: 0,
             problems: Vec::new(),
+            errors: Vec::new(),
+            loop_iterations: 0,
+            runaway: false,
             messages: Messages::default(),
             relight: None,
         }

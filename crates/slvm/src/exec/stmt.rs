@@ -1,7 +1,7 @@
 //! Statements under a running-state mask: blocks, varying `if`, loops with `break n` /
 //! `continue n` bookkeeping, `return`, declarations.
 
-use super::{zero_of, Exec, LoopState, MAX_LOOP_ITERATIONS};
+use super::{zero_of, Exec, LoopState, MAX_LOOP_ITERATIONS, MAX_TOTAL_ITERATIONS};
 use crate::value::{zip2, Mask, Slot, Value};
 use glam::Vec3;
 use illume_sl::ast::{Block, Expr, Global, Stmt, StmtKind, VarRef};
@@ -176,15 +176,32 @@ impl Exec<'_> {
         }
         self.push_loop();
         let mut running = mask.clone();
-        // A bound on iterations so that a shader whose condition never fails cannot hang the
-        // renderer (no RI 3.2 program needs 65536 iterations on one grid); hitting it warns.
+        // Bounds on iterations so that a shader whose condition never fails cannot hang the
+        // renderer (no RI 3.2 program needs 65536 iterations of one loop on one grid);
+        // hitting one is an error naming the shader and the loop's line (see `report`).
         let mut iterations = 0u32;
+        let line = cond.or(step).map(|e| (e.span.loc.line, e.span.loc.col));
         loop {
             iterations += 1;
-            if iterations > MAX_LOOP_ITERATIONS {
-                self.problem(format!(
-                    "a loop ran {MAX_LOOP_ITERATIONS} times on one grid and was stopped"
-                ));
+            self.loop_iterations += 1;
+            if self.runaway
+                || iterations > MAX_LOOP_ITERATIONS
+                || self.loop_iterations > MAX_TOTAL_ITERATIONS
+            {
+                if !self.runaway {
+                    let at = line.map_or(String::new(), |(l, c)| format!(" (line {l}:{c})"));
+                    let message = format!(
+                        "a loop{at} ran {} times on one grid ({} in all loops; limits \
+                         {MAX_LOOP_ITERATIONS} per loop, {MAX_TOTAL_ITERATIONS} in all) and was \
+                         stopped",
+                        iterations - 1,
+                        self.loop_iterations - 1
+                    );
+                    if !self.errors.contains(&message) {
+                        self.errors.push(message);
+                    }
+                }
+                self.runaway = true;
                 break;
             }
             let live = {
