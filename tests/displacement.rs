@@ -2,22 +2,12 @@
 //! `Attribute "displacementbound"` and its coordinate systems, and the hider's handling of a
 //! bound that is too small (warn once, re-bucket, same image).
 use illume_render::{render, RenderSettings, Rendered};
-use illume_ri::{from_rib_diagnostic, Diagnostic, Frame, Ri, Severity};
+use illume_ri::{Diagnostic, Frame, Severity};
 mod support;
 
 /// Parses `rib` and returns its frames with every RI diagnostic (parse and state).
 fn frames_and_diagnostics(rib: &str) -> (Vec<Frame>, Vec<Diagnostic>) {
-    let mut ri = Ri::new();
-    let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
-    for item in parser {
-        match item {
-            Ok(r) => ri.request(r),
-            Err(d) => ri.report(from_rib_diagnostic(d)),
-        }
-    }
-    ri.finish();
-    let diags = ri.drain_diagnostics();
-    (ri.take_frames(), diags)
+    support::frames_and_diagnostics(rib, None)
 }
 
 /// Renders the one frame of `rib`; returns the image and every diagnostic (RI and hider).

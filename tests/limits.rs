@@ -2,23 +2,15 @@
 //! `file:line:col` and clamped or skipped, never an abort by the operating system.
 //! The `render` binary tests (nesting, runaway SL loops, hostile texture headers) need
 //! `cargo build -p render`.
-use illume_ri::{from_rib_diagnostic, Diagnostic, Frame, Ri, Severity};
+use illume_ri::{Diagnostic, Frame, Severity};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod support;
+
 /// Parses `rib` (as `test.rib`) and returns its frames and every diagnostic.
 fn parse(rib: &str) -> (Vec<Frame>, Vec<Diagnostic>) {
-    let mut ri = Ri::new();
-    let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
-    for item in parser {
-        match item {
-            Ok(r) => ri.request(r),
-            Err(d) => ri.report(from_rib_diagnostic(d)),
-        }
-    }
-    ri.finish();
-    let diags = ri.drain_diagnostics();
-    (ri.take_frames(), diags)
+    support::frames_and_diagnostics(rib, None)
 }
 
 /// The one diagnostic of `severity` whose message contains `needle`, printed in full.

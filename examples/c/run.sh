@@ -47,7 +47,8 @@ if [ -n "$stray" ]; then
   echo "examples/c: libillume.so exports non-RI symbols: $(echo "$stray" | head -5 | tr '\n' ' ')" >&2
   status=1
 fi
-nm -D --defined-only "$so" | grep -q ' T RiSphere$' \
+symbols="$(nm -D --defined-only "$so")"
+grep -q ' T RiSphere$' <<<"$symbols" \
   || { echo "examples/c: libillume.so does not export RiSphere" >&2; status=1; }
 if command -v pkg-config >/dev/null 2>&1; then
   flags="$(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --cflags --libs illume)"
@@ -58,8 +59,13 @@ name=quadrics
 mkdir -p "$out/$name/shared"
 # shellcheck disable=SC2086 # $flags is a word list from pkg-config
 cc -Wall -Wextra -Werror -o "$out/$name/$name-shared" "$root/examples/c/$name.c" $flags
-LD_LIBRARY_PATH="$prefix/lib" ldd "$out/$name/$name-shared" | grep -q "$so" \
-  || { echo "examples/c: $name-shared is not linked against $so" >&2; status=1; }
+# ldd's output is taken whole first: `ldd | grep -q` under pipefail fails at random when grep
+# exits on its first match and ldd then dies of SIGPIPE.
+libs="$(LD_LIBRARY_PATH="$prefix/lib" ldd "$out/$name/$name-shared")"
+case "$libs" in
+  *"$so"*) ;;
+  *) echo "examples/c: $name-shared is not linked against $so" >&2; status=1 ;;
+esac
 (cd "$out/$name/shared" && LD_LIBRARY_PATH="$prefix/lib" "../$name-shared")
 # And its capture as gzip-compressed binary RIB renders the same bits through `render`.
 mkdir -p "$out/$name/binary"

@@ -1,11 +1,11 @@
 //! Shared by the integration tests: RIB text through the real parser into the RI state.
-use illume_ri::{from_rib_diagnostic, Frame, Ri, Severity};
+use illume_ri::{from_rib_diagnostic, Diagnostic, Frame, Ri, Severity};
 
-/// Parses `rib` and returns its frames, asserting that neither the parser nor the RI state
-/// reported an error (warnings are allowed: real scenes have them). `crop` overrides every
-/// frame's `CropWindow`, as `render --crop` does.
+/// Parses `rib` (named `test.rib` in diagnostics) and returns its frames with every diagnostic
+/// of the parser and the RI state. `crop` overrides every frame's `CropWindow`, as
+/// `render --crop` does.
 #[allow(dead_code)] // not every test binary parses without rendering
-pub fn frames(rib: &str, crop: Option<[f32; 4]>) -> Vec<Frame> {
+pub fn frames_and_diagnostics(rib: &str, crop: Option<[f32; 4]>) -> (Vec<Frame>, Vec<Diagnostic>) {
     let mut ri = Ri::new();
     ri.set_crop_override(crop);
     let parser = illume_rib::Parser::new(std::io::Cursor::new(rib.as_bytes().to_vec()), "test.rib");
@@ -16,13 +16,22 @@ pub fn frames(rib: &str, crop: Option<[f32; 4]>) -> Vec<Frame> {
         }
     }
     ri.finish();
-    let errors: Vec<_> = ri
-        .drain_diagnostics()
+    let diags = ri.drain_diagnostics();
+    (ri.take_frames(), diags)
+}
+
+/// Parses `rib` and returns its frames, asserting that neither the parser nor the RI state
+/// reported an error (warnings are allowed: real scenes have them). `crop` as in
+/// [`frames_and_diagnostics`].
+#[allow(dead_code)] // not every test binary parses without rendering
+pub fn frames(rib: &str, crop: Option<[f32; 4]>) -> Vec<Frame> {
+    let (frames, diags) = frames_and_diagnostics(rib, crop);
+    let errors: Vec<_> = diags
         .into_iter()
         .filter(|d| d.severity == Severity::Error)
         .collect();
     assert!(errors.is_empty(), "{errors:?}");
-    ri.take_frames()
+    frames
 }
 
 /// What `render` does with one RIB stream, through the same library loop
