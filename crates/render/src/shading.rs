@@ -4,12 +4,12 @@
 //! shading (depth passes keep `Os`).
 use crate::imaging::FrameImager;
 use crate::rayscene::{self, RayScene};
-use crate::slshaders::SlShaders;
+use crate::slshaders::{shader_warning, SlShaders};
 use crate::volumes::{FrameVolumes, GridRelight, VolumeSlot};
 use glam::{DMat4, Vec3};
 use illume_geom::Grid;
 use illume_reyes::{AovLayout, GridShader, PixelBlock, Shaded};
-use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
+use illume_ri::{Attributes, Diagnostic, Frame};
 use illume_shade::{
     displace, shade_surface_with, Displacement, LightCache, ShadingEnv, ShadingGrid, SpecularModel,
     Surface, TextureLookup, WarnOnce,
@@ -69,16 +69,6 @@ pub(crate) struct FrameShading<'a> {
     pub(crate) volumes: FrameVolumes,
 }
 
-fn diagnostic(shader: &Shader, request: &str, message: String) -> Diagnostic {
-    Diagnostic {
-        severity: Severity::Warning,
-        kind: illume_ri::ErrorKind::Unimplemented,
-        span: shader.span.clone(),
-        request: Some(request.to_string()),
-        message,
-    }
-}
-
 /// Projective camera → screen → NDC → raster maps (RI Spec 3.2 §4.1.1) as matrices, for the
 /// shaders' `transform("NDC", P)` (ReflMap, Listing 9.6).
 fn projections(frame: &Frame) -> (DMat4, DMat4, DMat4) {
@@ -116,12 +106,12 @@ fn bind_surfaces(
                     diags.extend(
                         warnings
                             .into_iter()
-                            .map(|w| diagnostic(shader, "Surface", w)),
+                            .map(|w| shader_warning(shader, "Surface", w)),
                     );
                     Some(Arc::new(s))
                 }
                 Err(e) => {
-                    diags.push(diagnostic(
+                    diags.push(shader_warning(
                         shader,
                         "Surface",
                         format!("{e}; using defaultsurface"),
@@ -162,12 +152,12 @@ impl<'a> FrameShading<'a> {
                     diags.extend(
                         warnings
                             .into_iter()
-                            .map(|w| diagnostic(shader, "Displacement", w)),
+                            .map(|w| shader_warning(shader, "Displacement", w)),
                     );
                     Some(Arc::new(d))
                 }
                 Err(e) => {
-                    diags.push(diagnostic(
+                    diags.push(shader_warning(
                         shader,
                         "Displacement",
                         format!("{e}; not displacing"),
@@ -198,12 +188,12 @@ impl<'a> FrameShading<'a> {
                         diags.extend(
                             warnings
                                 .into_iter()
-                                .map(|w| diagnostic(s, "LightSource", w)),
+                                .map(|w| shader_warning(s, "LightSource", w)),
                         );
                         Some(light)
                     }
                     Err(e) => {
-                        diags.push(diagnostic(
+                        diags.push(shader_warning(
                             s,
                             "LightSource",
                             format!("{e}; the light is ignored"),

@@ -41,7 +41,9 @@ pub(crate) struct SlShaders {
     lights: Vec<Option<SlLight>>,
 }
 
-fn warning(shader: &Shader, request: &str, message: String) -> Diagnostic {
+/// A warning about `shader` at its request (binding problems, fallbacks to a built-in): the
+/// one form the surface, displacement, light and volume bindings all report in.
+pub(crate) fn shader_warning(shader: &Shader, request: &str, message: String) -> Diagnostic {
     Diagnostic {
         severity: Severity::Warning,
         kind: illume_ri::ErrorKind::Unimplemented,
@@ -67,14 +69,18 @@ pub(crate) fn bind_sl(
         Ok(compiled) => {
             let (inst, warnings) =
                 SlInstance::bind(compiled, &shader.params, shader.camera_from_shader);
-            diags.extend(warnings.into_iter().map(|w| warning(shader, request, w)));
+            diags.extend(
+                warnings
+                    .into_iter()
+                    .map(|w| shader_warning(shader, request, w)),
+            );
             Some(inst)
         }
         Err(e) => {
             if reported.insert(e.clone()) {
                 diags.push(Diagnostic {
                     kind: illume_ri::ErrorKind::NoShader,
-                    ..warning(
+                    ..shader_warning(
                         shader,
                         request,
                         format!(

@@ -10,8 +10,8 @@
 //!
 //! `Interior`/`Exterior` apply to rays that `trace()` follows (`trace/volume.rs` calls
 //! [`FrameVolumes::volume_along`] with a one-point grid per ray segment).
-use crate::slshaders::{bind_sl, SlShaders};
-use illume_ri::{Attributes, Diagnostic, Frame, Severity, Shader};
+use crate::slshaders::{bind_sl, shader_warning, SlShaders};
+use illume_ri::{Attributes, Diagnostic, Frame, Shader};
 use illume_shade::{Light, LightCache, LightSamples, ShadingEnv, ShadingGrid, Volume};
 use illume_sl::types::ShaderKind;
 use illume_slvm::{Lights, Messages, Relight, SlInstance, Value};
@@ -58,16 +58,6 @@ pub(crate) struct FrameVolumes {
     bound: HashMap<usize, BoundVolume>,
 }
 
-fn warning(shader: &Shader, request: &str, message: String) -> Diagnostic {
-    Diagnostic {
-        severity: Severity::Warning,
-        kind: illume_ri::ErrorKind::Unimplemented,
-        span: shader.span.clone(),
-        request: Some(request.to_string()),
-        message,
-    }
-}
-
 impl FrameVolumes {
     pub fn bind(frame: &Frame, diags: &mut Vec<Diagnostic>) -> FrameVolumes {
         let mut v = FrameVolumes::default();
@@ -97,10 +87,10 @@ impl FrameVolumes {
                 }
                 match illume_shade::volume(&s.name, &s.params) {
                     Ok((b, warnings)) => {
-                        diags.extend(warnings.into_iter().map(|w| warning(s, request, w)));
+                        diags.extend(warnings.into_iter().map(|w| shader_warning(s, request, w)));
                         v.bound.insert(key, BoundVolume::Builtin(Arc::new(b)));
                     }
-                    Err(e) => diags.push(warning(s, request, format!("{e}; ignored"))),
+                    Err(e) => diags.push(shader_warning(s, request, format!("{e}; ignored"))),
                 }
             }
         }
