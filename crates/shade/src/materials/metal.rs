@@ -27,13 +27,7 @@ pub(super) fn params(rough: bool) -> Vec<(&'static str, ParamValue)> {
 /// The terms of [`shade`] apart (no diffuse term for `metal`).
 pub(super) fn components(ctx: &SurfaceContext, rough: bool) -> Components {
     let g = ctx.grid;
-    let p = ctx.params;
-    let (ka, kd, ks, r) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-    );
+    let [ka, kd, ks, r] = ctx.ka_kd_ks_roughness();
     let l = ctx.lights;
     let mut out = Components::new(g.len());
     for i in 0..g.len() {

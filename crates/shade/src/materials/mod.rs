@@ -20,7 +20,7 @@ mod wardanisotropic;
 
 use crate::geometric::{faceforward, normalize_or_zero};
 use crate::light::LightCache;
-use crate::parameters::{ParamValue, ShaderParams};
+use crate::parameters::{FloatParam, ParamValue, ShaderParams};
 use crate::shadingenv::ShadingEnv;
 use crate::shadinggrid::ShadingGrid;
 use glam::Vec3;
@@ -57,6 +57,12 @@ impl<'a> SurfaceContext<'a> {
             nf,
             v,
         }
+    }
+
+    /// `Ka`, `Kd`, `Ks` and `roughness` read per point: the parameters the plastic and metal
+    /// family (plastic, metal, shinymetal, shinyplastic) share.
+    pub fn ka_kd_ks_roughness(&self) -> [FloatParam<'a>; 4] {
+        ["Ka", "Kd", "Ks", "roughness"].map(|name| self.params.float_on(self.grid, name))
     }
 }
 

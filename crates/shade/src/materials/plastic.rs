@@ -34,12 +34,7 @@ pub(super) fn params(painted: bool) -> Vec<(&'static str, ParamValue)> {
 pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
     let p = ctx.params;
-    let (ka, kd, ks, rough) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-    );
+    let [ka, kd, ks, rough] = ctx.ka_kd_ks_roughness();
     let spec = p.vec3_on(g, "specularcolor");
     let name = p.string("texturename");
     let tex = (!name.is_empty()).then(|| texture_colors(ctx.env, g, name, 3, 0.0));

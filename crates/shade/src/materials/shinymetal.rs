@@ -69,13 +69,7 @@ fn environment_term(ctx: &SurfaceContext) -> Vec<Vec3> {
 /// The terms of [`shade`] apart, each times `basecolor` (`Cs`).
 pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
-    let p = ctx.params;
-    let (ka, kd, ks, r) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-    );
+    let [ka, kd, ks, r] = ctx.ka_kd_ks_roughness();
     let env_term = environment_term(ctx);
     let l = ctx.lights;
     let mut out = Components::new(g.len());

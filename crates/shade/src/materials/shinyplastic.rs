@@ -64,13 +64,7 @@ fn fresnel_and_environment(ctx: &SurfaceContext) -> (Vec<f32>, Vec<Vec3>) {
 /// The terms of [`shade`] apart.
 pub(super) fn components(ctx: &SurfaceContext) -> Components {
     let g = ctx.grid;
-    let p = ctx.params;
-    let (ka, kd, ks, r) = (
-        p.float_on(g, "Ka"),
-        p.float_on(g, "Kd"),
-        p.float_on(g, "Ks"),
-        p.float_on(g, "roughness"),
-    );
+    let [ka, kd, ks, r] = ctx.ka_kd_ks_roughness();
     let (fr, env_term) = fresnel_and_environment(ctx);
     let l = ctx.lights;
     let mut out = Components::new(g.len());
