@@ -63,9 +63,9 @@ impl SlInstance {
         let (ci, oi, alpha) = {
             let mut exec = Exec::new(&self.shader.program, &g, env, &lights);
             exec.messages = Messages::default();
-            exec.set_global(Global::Ci, Value::Triple(Slot::Varying(ci_in)));
-            exec.set_global(Global::Oi, Value::Triple(Slot::Varying(g.os.clone())));
-            exec.set_global(Global::alpha, Value::Float(Slot::Varying(alpha_in.clone())));
+            exec.set_global(Global::Ci, Value::Triple(Slot::varying(ci_in)));
+            exec.set_global(Global::Oi, Value::Triple(Slot::varying(g.os.clone())));
+            exec.set_global(Global::alpha, Value::Float(Slot::varying(alpha_in.clone())));
             let params = self.params_for(&mut exec, &g);
             exec.run_shader(self.shader.id, params);
             Self::report_problems(&exec, env, self.name());

@@ -312,8 +312,8 @@ impl SlInstance {
         normal: Vec<Vec3>,
     ) -> (LightSamples, Vec<(String, Value)>) {
         let (p, n) = (
-            Value::Triple(crate::value::Slot::Varying(position)),
-            Value::Triple(crate::value::Slot::Varying(normal)),
+            Value::Triple(crate::value::Slot::varying(position)),
+            Value::Triple(crate::value::Slot::varying(normal)),
         );
         self.run_light_from(grid, env, messages, p, n)
     }
@@ -465,14 +465,14 @@ fn primvar(var: &[f32], comps: usize, n: usize) -> Value {
         return Value::Float(if one {
             Slot::Uniform(var[0])
         } else {
-            Slot::Varying(var[..n].to_vec())
+            Slot::varying(var[..n].to_vec())
         });
     }
     let at = |i: usize| Vec3::new(var[3 * i], var[3 * i + 1], var[3 * i + 2]);
     Value::Triple(if one {
         Slot::Uniform(at(0))
     } else {
-        Slot::Varying((0..n).map(at).collect())
+        Slot::varying((0..n).map(at).collect())
     })
 }
 

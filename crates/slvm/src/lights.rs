@@ -158,6 +158,72 @@ impl<'a> Lights<'a> {
         })
     }
 
+    /// Per light, `1 - share(light)`: `__nondiffuse`/`__nonspecular` looked up once per call
+    /// of a grid built-in rather than once per point and light.
+    fn keep(&self, share: impl Fn(&LightView<'a>) -> f32) -> Vec<f32> {
+        self.lights.iter().map(|l| 1.0 - share(l)).collect()
+    }
+
+    /// `Σ Cl · keep · term(i, L)` over the lights of `illuminance(P, n(i), PI/2)` for every
+    /// point: the grid form of [`Lights::hemisphere`], same sums in the same order.
+    fn hemisphere_grid(
+        &self,
+        count: usize,
+        keep: &[f32],
+        n: impl Fn(usize) -> Vec3,
+        term: impl Fn(usize, Vec3, Vec3) -> f32,
+    ) -> Vec<Vec3> {
+        (0..count)
+            .map(|i| {
+                let nn = n(i);
+                let mut c = Vec3::ZERO;
+                for (light, &k) in self.lights.iter().zip(keep) {
+                    let s = light.samples;
+                    if s.ambient || !s.lit[i] || !in_cone(s.l[i], nn, std::f32::consts::FRAC_PI_2) {
+                        continue;
+                    }
+                    c += s.cl[i] * (k * term(i, nn, s.l[i]));
+                }
+                c
+            })
+            .collect()
+    }
+
+    /// `diffuse(N)` at every point, `n(i)` the unit normal: [`Lights::diffuse`]'s bits.
+    pub fn diffuse_grid(&self, count: usize, n: impl Fn(usize) -> Vec3) -> Vec<Vec3> {
+        let keep = self.keep(|l| l.nondiffuse());
+        self.hemisphere_grid(count, &keep, n, |_, n, l| illume_shade::diffuse_term(n, l))
+    }
+
+    /// `specular(N, V, roughness)` at every point: [`Lights::specular`]'s bits.
+    pub fn specular_grid(
+        &self,
+        count: usize,
+        n: impl Fn(usize) -> Vec3,
+        v: impl Fn(usize) -> Vec3,
+        roughness: impl Fn(usize) -> f32,
+        model: SpecularModel,
+    ) -> Vec<Vec3> {
+        let keep = self.keep(|l| l.nonspecular());
+        self.hemisphere_grid(count, &keep, n, |i, n, l| {
+            illume_shade::blinn_phong(n, v(i), l, roughness(i), model)
+        })
+    }
+
+    /// `phong(N, V, size)` at every point: [`Lights::phong`]'s bits.
+    pub fn phong_grid(
+        &self,
+        count: usize,
+        n: impl Fn(usize) -> Vec3,
+        v: impl Fn(usize) -> Vec3,
+        size: impl Fn(usize) -> f32,
+    ) -> Vec<Vec3> {
+        let keep = self.keep(|l| l.nonspecular());
+        self.hemisphere_grid(count, &keep, n, |i, n, l| {
+            illume_shade::phong_term(n, v(i), l, size(i))
+        })
+    }
+
     /// Whether light `k` takes part in `illuminance(category, …)`.
     pub fn matches(&self, k: usize, category: &str) -> bool {
         category_matches(category, &self.lights[k].category())

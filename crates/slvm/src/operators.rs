@@ -3,8 +3,9 @@
 //! and logic giving floats 0/1. Mixed float/triple operands are promoted here as the language
 //! does (the checker may also have made the promotion explicit; both work).
 use crate::geometric::{matrix_inverse, matrix_mul};
-use crate::value::{zip2, Slot, Value};
+use crate::value::{zip2, zip2_owned, Slot, Value};
 use glam::{DMat4, Vec3};
+use std::sync::Arc;
 
 /// A binary operator by its SL spelling.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -129,6 +130,48 @@ pub fn binary(op: BinOp, a: &Value, b: &Value, n: usize) -> Option<Value> {
     })
 }
 
+/// [`binary`] on operands the caller gives up: the result is written into an operand's lanes
+/// when they are not shared (a temporary such as `Kd*diffuse(Nf)`'s `diffuse(Nf)`), so a
+/// chain of arithmetic allocates nothing after its first varying node. Same bits as [`binary`]:
+/// the per-point kernels are the same functions.
+pub fn binary_owned(op: BinOp, a: Value, b: Value, n: usize) -> Option<Value> {
+    use Value::*;
+    let float_valued = matches!(
+        op,
+        BinOp::Dot | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge | BinOp::Eq | BinOp::Ne
+    ) || matches!(op, BinOp::And | BinOp::Or);
+    Some(match (a, b) {
+        (Float(x), Float(y)) => Float(zip_reuse(x, y, n, |&x, &y| float_op(op, x, y))),
+        (Triple(x), Triple(y)) if !float_valued => {
+            Triple(zip_reuse(x, y, n, |&x, &y| triple_op(op, x, y)))
+        }
+        (Float(x), Triple(y)) if !float_valued && unshared(&y) => {
+            Triple(zip2_owned(y, &x, n, |&t, &f| {
+                triple_op(op, Vec3::splat(f), t)
+            }))
+        }
+        (Triple(x), Float(y)) if !float_valued && unshared(&x) => {
+            Triple(zip2_owned(x, &y, n, |&t, &f| {
+                triple_op(op, t, Vec3::splat(f))
+            }))
+        }
+        (a, b) => return binary(op, &a, &b, n),
+    })
+}
+
+/// Whether `s` has per-point lanes no one else holds (so they can be overwritten).
+fn unshared<T>(s: &Slot<T>) -> bool {
+    matches!(s, Slot::Varying(v) if Arc::strong_count(v) == 1 && Arc::weak_count(v) == 0)
+}
+
+/// `f(a, b)` into `a`'s lanes, or else `b`'s, when unshared; a new allocation otherwise.
+fn zip_reuse<T: Clone>(a: Slot<T>, b: Slot<T>, n: usize, f: impl Fn(&T, &T) -> T) -> Slot<T> {
+    if !unshared(&a) && unshared(&b) {
+        return zip2_owned(b, &a, n, |y, x| f(x, y));
+    }
+    zip2_owned(a, &b, n, f)
+}
+
 /// `f * m`, `m * f`, `m / f`, `f / m` (= `f · inverse(m)`): a float is the scaled identity.
 fn scalar_matrix(
     op: BinOp,
@@ -156,6 +199,15 @@ pub fn negate(a: &Value) -> Option<Value> {
         Value::Triple(x) => Value::Triple(x.map(|&x| -x)),
         Value::Matrix(x) => Value::Matrix(x.map(|&x| -x)),
         _ => return None,
+    })
+}
+
+/// [`negate`] in place when the operand's lanes are unshared.
+pub fn negate_owned(a: Value) -> Option<Value> {
+    Some(match a {
+        Value::Float(x) => Value::Float(x.map_owned(|&x| -x)),
+        Value::Triple(x) => Value::Triple(x.map_owned(|&x| -x)),
+        a => return negate(&a),
     })
 }
 
@@ -207,12 +259,12 @@ mod tests {
 
     #[test]
     fn comparisons_are_varying_when_an_operand_is() {
-        let a = Value::Float(Slot::Varying(vec![1.0, 3.0]));
+        let a = Value::Float(Slot::varying(vec![1.0, 3.0]));
         let r = binary(BinOp::Lt, &a, &Value::float(2.0), 2).unwrap();
-        assert_eq!(r, Value::Float(Slot::Varying(vec![1.0, 0.0])));
+        assert_eq!(r, Value::Float(Slot::varying(vec![1.0, 0.0])));
         assert_eq!(
             not(&r).unwrap(),
-            Value::Float(Slot::Varying(vec![0.0, 1.0]))
+            Value::Float(Slot::varying(vec![0.0, 1.0]))
         );
     }
 

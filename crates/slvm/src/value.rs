@@ -5,13 +5,21 @@ use glam::{DMat4, Vec3};
 use std::sync::Arc;
 
 /// One quantity over a grid: a single value shared by every point, or one value per point.
+/// The per-point values are shared (`Arc`): reading a variable, passing it to a built-in or
+/// assigning it whole costs a reference count, not a copy; writers copy only when the lanes
+/// are shared ([`Slot::lanes_mut`]), and operators reuse a temporary's lanes in place.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Slot<T> {
     Uniform(T),
-    Varying(Vec<T>),
+    Varying(Arc<Vec<T>>),
 }
 
 impl<T: Clone> Slot<T> {
+    /// Per-point values.
+    pub fn varying(v: Vec<T>) -> Slot<T> {
+        Slot::Varying(Arc::new(v))
+    }
+
     /// The value at grid point `i` (the shared value when uniform).
     #[inline]
     pub fn at(&self, i: usize) -> &T {
@@ -29,7 +37,19 @@ impl<T: Clone> Slot<T> {
     pub fn to_varying(&self, n: usize) -> Vec<T> {
         match self {
             Slot::Uniform(x) => vec![x.clone(); n],
-            Slot::Varying(v) => v.clone(),
+            Slot::Varying(v) => v.to_vec(),
+        }
+    }
+
+    /// The per-point values for writing: a uniform value expanded to `n` copies, shared lanes
+    /// copied first (copy on write), unshared ones written in place.
+    pub fn lanes_mut(&mut self, n: usize) -> &mut Vec<T> {
+        if let Slot::Uniform(x) = self {
+            *self = Slot::varying(vec![x.clone(); n]);
+        }
+        match self {
+            Slot::Varying(v) => Arc::make_mut(v),
+            Slot::Uniform(_) => unreachable!("made varying above"),
         }
     }
 
@@ -37,7 +57,24 @@ impl<T: Clone> Slot<T> {
     pub fn map<R>(&self, f: impl Fn(&T) -> R) -> Slot<R> {
         match self {
             Slot::Uniform(x) => Slot::Uniform(f(x)),
-            Slot::Varying(v) => Slot::Varying(v.iter().map(f).collect()),
+            Slot::Varying(v) => Slot::Varying(Arc::new(v.iter().map(f).collect())),
+        }
+    }
+
+    /// `f` applied point by point to a value of the same type, in place when the lanes are
+    /// not shared (a temporary of the expression being evaluated): no allocation then.
+    pub fn map_owned(self, f: impl Fn(&T) -> T) -> Slot<T> {
+        match self {
+            Slot::Uniform(x) => Slot::Uniform(f(&x)),
+            Slot::Varying(mut v) => match Arc::get_mut(&mut v) {
+                Some(lanes) => {
+                    for x in lanes.iter_mut() {
+                        *x = f(x);
+                    }
+                    Slot::Varying(v)
+                }
+                None => Slot::Varying(Arc::new(v.iter().map(f).collect())),
+            },
         }
     }
 
@@ -49,26 +86,56 @@ impl<T: Clone> Slot<T> {
             (None, _) => *self = src.clone(),
             (Some(m), _) if m.all() => *self = src.clone(),
             (Some(m), _) => {
-                let mut dst = self.to_varying(n);
+                let dst = self.lanes_mut(n);
                 for i in m.active() {
                     dst[i] = src.at(i).clone();
                 }
-                *self = Slot::Varying(dst);
             }
         }
     }
 }
 
-/// `f(a, b)` point by point: uniform only when both operands are.
+/// `f(a, b)` point by point: uniform only when both operands are. The uniform/varying cases
+/// are split outside the loop so each loop is a plain pass over slices.
 pub fn zip2<A: Clone, B: Clone, R>(
     a: &Slot<A>,
     b: &Slot<B>,
     n: usize,
     f: impl Fn(&A, &B) -> R,
 ) -> Slot<R> {
-    match (a, b) {
-        (Slot::Uniform(x), Slot::Uniform(y)) => Slot::Uniform(f(x, y)),
-        _ => Slot::Varying((0..n).map(|i| f(a.at(i), b.at(i))).collect()),
+    Slot::Varying(Arc::new(match (a, b) {
+        (Slot::Uniform(x), Slot::Uniform(y)) => return Slot::Uniform(f(x, y)),
+        (Slot::Varying(x), Slot::Varying(y)) => {
+            x[..n].iter().zip(&y[..n]).map(|(x, y)| f(x, y)).collect()
+        }
+        (Slot::Varying(x), Slot::Uniform(y)) => x[..n].iter().map(|x| f(x, y)).collect(),
+        (Slot::Uniform(x), Slot::Varying(y)) => y[..n].iter().map(|y| f(x, y)).collect(),
+    }))
+}
+
+/// `a = f(a, b)` point by point, writing into `a`'s lanes when they are not shared (a
+/// temporary): the operators' path that allocates nothing.
+pub fn zip2_owned<A: Clone, B: Clone>(
+    a: Slot<A>,
+    b: &Slot<B>,
+    n: usize,
+    f: impl Fn(&A, &B) -> A,
+) -> Slot<A> {
+    match a {
+        Slot::Varying(mut x) => match Arc::get_mut(&mut x) {
+            Some(lanes) => {
+                match b {
+                    Slot::Uniform(y) => lanes[..n].iter_mut().for_each(|x| *x = f(x, y)),
+                    Slot::Varying(y) => lanes[..n]
+                        .iter_mut()
+                        .zip(&y[..n])
+                        .for_each(|(x, y)| *x = f(x, y)),
+                }
+                Slot::Varying(x)
+            }
+            None => zip2(&Slot::Varying(x), b, n, f),
+        },
+        a => zip2(&a, b, n, f),
     }
 }
 
@@ -82,7 +149,9 @@ pub fn zip3<A: Clone, B: Clone, C: Clone, R>(
 ) -> Slot<R> {
     match (a, b, c) {
         (Slot::Uniform(x), Slot::Uniform(y), Slot::Uniform(z)) => Slot::Uniform(f(x, y, z)),
-        _ => Slot::Varying((0..n).map(|i| f(a.at(i), b.at(i), c.at(i))).collect()),
+        _ => Slot::Varying(Arc::new(
+            (0..n).map(|i| f(a.at(i), b.at(i), c.at(i))).collect(),
+        )),
     }
 }
 
@@ -277,8 +346,8 @@ mod tests {
         let a = Slot::Uniform(2.0f32);
         let b = Slot::Uniform(3.0f32);
         assert_eq!(zip2(&a, &b, 100, |x, y| x * y), Slot::Uniform(6.0));
-        let c = Slot::Varying(vec![1.0f32, 2.0]);
-        assert_eq!(zip2(&a, &c, 2, |x, y| x * y), Slot::Varying(vec![2.0, 4.0]));
+        let c = Slot::varying(vec![1.0f32, 2.0]);
+        assert_eq!(zip2(&a, &c, 2, |x, y| x * y), Slot::varying(vec![2.0, 4.0]));
     }
 
     #[test]
@@ -286,7 +355,7 @@ mod tests {
         let mut x = Value::float(0.0);
         let mask = Mask::from_bits(vec![true, false, true]);
         x.assign(&Value::float(5.0), Some(&mask), 3);
-        assert_eq!(x, Value::Float(Slot::Varying(vec![5.0, 0.0, 5.0])));
+        assert_eq!(x, Value::Float(Slot::varying(vec![5.0, 0.0, 5.0])));
         // A full mask keeps a uniform assignment uniform.
         let mut y = Value::float(0.0);
         y.assign(&Value::float(5.0), Some(&Mask::all_on(3)), 3);
@@ -296,7 +365,7 @@ mod tests {
     #[test]
     fn split_partitions_the_running_points() {
         let m = Mask::from_bits(vec![true, true, false, true]);
-        let cond = Slot::Varying(vec![1.0, 0.0, 1.0, 2.0]);
+        let cond = Slot::varying(vec![1.0, 0.0, 1.0, 2.0]);
         let (on, off) = m.split(&cond);
         assert_eq!(on.active().collect::<Vec<_>>(), vec![0, 3]);
         assert_eq!(off.active().collect::<Vec<_>>(), vec![1]);

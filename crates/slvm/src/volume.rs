@@ -50,8 +50,8 @@ impl SlInstance {
             if let Some(e) = eye {
                 exec.set_global(Global::E, Value::triple(e));
             }
-            exec.set_global(Global::Ci, Value::Triple(Slot::Varying(g.ci.clone())));
-            exec.set_global(Global::Oi, Value::Triple(Slot::Varying(g.oi.clone())));
+            exec.set_global(Global::Ci, Value::Triple(Slot::varying(g.ci.clone())));
+            exec.set_global(Global::Oi, Value::Triple(Slot::varying(g.oi.clone())));
             let params = self.params_for(&mut exec, g);
             exec.run_shader(self.shader.id, params);
             Self::report_problems(&exec, env, self.name());

@@ -89,7 +89,7 @@ impl Exec<'_> {
         if missing {
             self.env.warn(&format!("bump `{name}` not found; no bump"));
         }
-        Value::Triple(Slot::Varying(out))
+        Value::Triple(Slot::varying(out))
     }
 }
 

@@ -72,12 +72,12 @@ impl Exec<'_> {
     fn deriv(&self, v: &Value, along_u: bool) -> Value {
         let g = self.grid;
         match v {
-            Value::Float(Slot::Varying(x)) => Value::Float(Slot::Varying(if along_u {
+            Value::Float(Slot::Varying(x)) => Value::Float(Slot::varying(if along_u {
                 g.deriv_u(x)
             } else {
                 g.deriv_v(x)
             })),
-            Value::Triple(Slot::Varying(x)) => Value::Triple(Slot::Varying(if along_u {
+            Value::Triple(Slot::Varying(x)) => Value::Triple(Slot::varying(if along_u {
                 g.deriv_u(x)
             } else {
                 g.deriv_v(x)
@@ -94,7 +94,7 @@ impl Exec<'_> {
             Slot::Uniform(_) => Slot::Uniform(0.0),
             Slot::Varying(v) => {
                 let (du, dv) = (g.deriv_u(v), g.deriv_v(v));
-                Slot::Varying(
+                Slot::varying(
                     (0..n)
                         .map(|i| (du[i] * g.du).abs() + (dv[i] * g.dv).abs())
                         .collect(),

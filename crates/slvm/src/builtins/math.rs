@@ -90,7 +90,7 @@ impl Exec<'_> {
             Value::Float(if uniform {
                 Slot::Uniform(at(0))
             } else {
-                Slot::Varying((0..n).map(at).collect())
+                Slot::varying((0..n).map(at).collect())
             })
         } else {
             let ks: Vec<Slot<glam::Vec3>> = knots.iter().map(tr).collect();
@@ -102,7 +102,7 @@ impl Exec<'_> {
             Value::Triple(if uniform {
                 Slot::Uniform(at(0))
             } else {
-                Slot::Varying((0..n).map(at).collect())
+                Slot::varying((0..n).map(at).collect())
             })
         })
     }

@@ -65,9 +65,9 @@ impl Exec<'_> {
         };
         let f = |i: usize, c: u32| kernel::random(key(i), site.wrapping_mul(3) + c, seed);
         if ret == BaseType::Float {
-            Value::Float(Slot::Varying((0..n).map(|i| f(i, 0)).collect()))
+            Value::Float(Slot::varying((0..n).map(|i| f(i, 0)).collect()))
         } else {
-            Value::Triple(Slot::Varying(
+            Value::Triple(Slot::varying(
                 (0..n)
                     .map(|i| Vec3::new(f(i, 0), f(i, 1), f(i, 2)))
                     .collect(),

@@ -53,7 +53,7 @@ impl Exec<'_> {
                 let hits = self.hits(mask, &p, &r, false);
                 self.write_back(&c.exprs[2], &triples(&hits, n, |h| h.1), mask);
                 self.write_back(&c.exprs[3], &triples(&hits, n, |h| h.2), mask);
-                Value::Float(Slot::Varying(
+                Value::Float(Slot::varying(
                     hits.iter().map(|h| h.map_or(NO_HIT, |h| h.0)).collect(),
                 ))
             }
@@ -62,7 +62,7 @@ impl Exec<'_> {
                 let hits = self.hits(mask, &p, &r, true);
                 let e = c.exprs;
                 let dist = hits.iter().map(|h| h.map_or(NO_HIT, |h| h.0)).collect();
-                self.write_back(&e[2], &Value::Float(Slot::Varying(dist)), mask);
+                self.write_back(&e[2], &Value::Float(Slot::varying(dist)), mask);
                 self.write_back(&e[3], &triples(&hits, n, |h| h.1), mask);
                 self.write_back(&e[4], &triples(&hits, n, |h| h.2), mask);
                 // The ray that missed everything: this one, when it missed (one bounce).
@@ -71,8 +71,8 @@ impl Exec<'_> {
                 let rm = (0..n)
                     .map(|i| miss(i, r.at(i).normalize_or_zero()))
                     .collect();
-                self.write_back(&e[5], &Value::Triple(Slot::Varying(pm)), mask);
-                self.write_back(&e[6], &Value::Triple(Slot::Varying(rm)), mask);
+                self.write_back(&e[5], &Value::Triple(Slot::varying(pm)), mask);
+                self.write_back(&e[6], &Value::Triple(Slot::varying(rm)), mask);
                 triples(&hits, n, |h| h.3)
             }
             (B::Occlusion, 3) => {
@@ -106,7 +106,7 @@ impl Exec<'_> {
         let Some(t) = self.env.tracer else {
             return Value::triple(outside);
         };
-        Value::Triple(Slot::Varying(
+        Value::Triple(Slot::varying(
             (0..self.n)
                 .map(|i| if mask.get(i) { f(self, i, t) } else { outside })
                 .collect(),
@@ -350,7 +350,7 @@ fn triples(
     n: usize,
     f: impl Fn(&(f32, Vec3, Vec3, Vec3)) -> Vec3,
 ) -> Value {
-    Value::Triple(Slot::Varying(
+    Value::Triple(Slot::varying(
         (0..n)
             .map(|i| hits.get(i).copied().flatten().map_or(Vec3::ZERO, |h| f(&h)))
             .collect(),

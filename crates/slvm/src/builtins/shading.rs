@@ -15,34 +15,36 @@ impl Exec<'_> {
         Some(match (c.id, a.len()) {
             (B::Ambient, 0) => {
                 let l = self.lights;
-                Value::Triple(Slot::Varying((0..n).map(|i| l.ambient(i)).collect()))
+                Value::Triple(Slot::varying((0..n).map(|i| l.ambient(i)).collect()))
             }
             (B::Diffuse, 1) => {
-                let (l, nn) = (self.lights, tr(&a[0]));
-                Value::Triple(Slot::Varying(
-                    (0..n)
-                        .map(|i| l.diffuse(i, normalize_or_zero(*nn.at(i))))
-                        .collect(),
-                ))
+                let nn = tr(&a[0]);
+                let unit = |i| normalize_or_zero(*nn.at(i));
+                Value::Triple(Slot::varying(self.lights.diffuse_grid(n, unit)))
             }
             (B::Specular, 3) => {
-                let (l, nn, v, r) = (self.lights, tr(&a[0]), tr(&a[1]), fl(&a[2]));
+                let (nn, v, r) = (tr(&a[0]), tr(&a[1]), fl(&a[2]));
+                let unit = |i| normalize_or_zero(*nn.at(i));
+                let l = self.lights;
                 let model = self.env.specular_model;
-                Value::Triple(Slot::Varying(
-                    (0..n)
-                        .map(|i| {
-                            l.specular(i, normalize_or_zero(*nn.at(i)), *v.at(i), *r.at(i), model)
-                        })
-                        .collect(),
-                ))
+                Value::Triple(Slot::varying(l.specular_grid(
+                    n,
+                    unit,
+                    |i| *v.at(i),
+                    |i| *r.at(i),
+                    model,
+                )))
             }
             (B::Phong, 3) => {
-                let (l, nn, v, s) = (self.lights, tr(&a[0]), tr(&a[1]), fl(&a[2]));
-                Value::Triple(Slot::Varying(
-                    (0..n)
-                        .map(|i| l.phong(i, normalize_or_zero(*nn.at(i)), *v.at(i), *s.at(i)))
-                        .collect(),
-                ))
+                let (nn, v, s) = (tr(&a[0]), tr(&a[1]), fl(&a[2]));
+                let unit = |i| normalize_or_zero(*nn.at(i));
+                let l = self.lights;
+                Value::Triple(Slot::varying(l.phong_grid(
+                    n,
+                    unit,
+                    |i| *v.at(i),
+                    |i| *s.at(i),
+                )))
             }
             (B::SpecularBrdf, 4) => {
                 let model = self.env.specular_model;

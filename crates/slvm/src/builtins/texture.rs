@@ -103,7 +103,7 @@ impl Exec<'_> {
         match p {
             Slot::Uniform(_) => (vec![Vec3::ZERO; self.n], vec![Vec3::ZERO; self.n]),
             // The surface position itself: its analytic derivatives, as the built-in lights.
-            Slot::Varying(v) if *v == g.p => (
+            Slot::Varying(v) if **v == g.p => (
                 g.dpdu.iter().map(|d| *d * g.du).collect(),
                 g.dpdv.iter().map(|d| *d * g.dv).collect(),
             ),
@@ -234,9 +234,9 @@ impl Exec<'_> {
         }
         let clean = |x: f32| if x.is_finite() { x } else { 0.0 };
         if nch == 1 {
-            Value::Float(Slot::Varying(out.iter().map(|c| clean(c[0])).collect()))
+            Value::Float(Slot::varying(out.iter().map(|c| clean(c[0])).collect()))
         } else {
-            Value::Triple(Slot::Varying(
+            Value::Triple(Slot::varying(
                 out.iter()
                     .map(|c| Vec3::new(clean(c[0]), clean(c[1]), clean(c[2])))
                     .collect(),
@@ -267,9 +267,9 @@ impl Exec<'_> {
                     opts.blur.unwrap_or(0.0),
                 );
                 Some(if nch == 1 {
-                    Value::Float(Slot::Varying(v))
+                    Value::Float(Slot::varying(v))
                 } else {
-                    Value::Triple(Slot::Varying(v.into_iter().map(Vec3::splat).collect()))
+                    Value::Triple(Slot::varying(v.into_iter().map(Vec3::splat).collect()))
                 })
             }
             TextureKind::Environment => {
@@ -280,9 +280,9 @@ impl Exec<'_> {
                     opts.blur.unwrap_or(0.0),
                 );
                 Some(if nch == 1 {
-                    Value::Float(Slot::Varying(c.into_iter().map(|c| c.x).collect()))
+                    Value::Float(Slot::varying(c.into_iter().map(|c| c.x).collect()))
                 } else {
-                    Value::Triple(Slot::Varying(c))
+                    Value::Triple(Slot::varying(c))
                 })
             }
             _ => None,

@@ -81,7 +81,7 @@ impl Exec<'_> {
             ExprKind::Unary { op, expr } => {
                 let v = self.eval(expr, mask);
                 match op {
-                    UnaryOp::Neg => operators::negate(&v),
+                    UnaryOp::Neg => operators::negate_owned(v),
                     UnaryOp::Not => operators::not(&v),
                 }
                 .unwrap_or_else(|| zero_of(e.ty))
@@ -89,7 +89,7 @@ impl Exec<'_> {
             ExprKind::Binary { op, lhs, rhs } => {
                 let a = self.eval(lhs, mask);
                 let b = self.eval(rhs, mask);
-                operators::binary(binop(*op), &a, &b, n).unwrap_or_else(|| zero_of(e.ty))
+                operators::binary_owned(binop(*op), a, b, n).unwrap_or_else(|| zero_of(e.ty))
             }
             ExprKind::Ternary {
                 cond,
@@ -121,7 +121,7 @@ impl Exec<'_> {
                     None => v,
                     Some(bop) => {
                         let cur = self.read_lvalue(target, mask);
-                        operators::binary(binop(bop), &cur, &v, n).unwrap_or(v)
+                        operators::binary_owned(binop(bop), cur, v.clone(), n).unwrap_or(v)
                     }
                 };
                 self.write(target, &v, mask);
@@ -225,7 +225,7 @@ fn build_tuple(base: BaseType, vals: &[Slot<f32>], n: usize) -> Value {
         return Value::Matrix(if all_uniform {
             Slot::Uniform(at(0))
         } else {
-            Slot::Varying((0..n).map(at).collect())
+            Slot::varying((0..n).map(at).collect())
         });
     }
     let get = |k: usize| vals.get(k).cloned().unwrap_or(Slot::Uniform(0.0));

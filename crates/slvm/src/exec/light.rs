@@ -1,7 +1,7 @@
 //! The lighting constructs: `illuminance` runs its body once per light for the points the
 //! light reaches; `illuminate`/`solar` record which points a light shader lit.
 
-use super::{gidx, Exec};
+use super::Exec;
 use crate::lights::in_cone;
 use crate::value::{Mask, Slot, Value};
 use glam::Vec3;
@@ -27,7 +27,8 @@ impl Exec<'_> {
         };
         self.emission.directional = true;
         let n = self.n;
-        self.globals[gidx(Global::L)].assign(&Value::Triple(l), Some(&run), n);
+        self.global_mut(Global::L)
+            .assign(&Value::Triple(l), Some(&run), n);
         if !run.none() {
             self.exec_stmt(body, &run);
         }
@@ -85,9 +86,9 @@ impl Exec<'_> {
             if m.none() {
                 continue;
             }
-            self.set_global(Global::L, Value::Triple(Slot::Varying(s.l.clone())));
-            self.set_global(Global::Cl, Value::Triple(Slot::Varying(s.cl.clone())));
-            self.set_global(Global::Ol, Value::Triple(Slot::Varying(s.ol.clone())));
+            self.set_global(Global::L, Value::Triple(Slot::varying(s.l.clone())));
+            self.set_global(Global::Cl, Value::Triple(Slot::varying(s.cl.clone())));
+            self.set_global(Global::Ol, Value::Triple(Slot::varying(s.ol.clone())));
             self.current_light = Some(k);
             self.exec_stmt(&il.body, &m);
             if let Some(l) = self.frames.last_mut().and_then(|f| f.loops.last_mut()) {

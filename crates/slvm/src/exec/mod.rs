@@ -9,6 +9,7 @@
 //! `vars.rs` variables and array elements, `space.rs` coordinate-space conversions; the
 //! built-ins are in `crate::builtins`.
 mod expr;
+mod globals;
 mod light;
 mod space;
 mod stmt;
@@ -22,6 +23,7 @@ use glam::{DMat4, Vec3};
 use illume_shade::{ShadingEnv, ShadingGrid};
 use illume_sl::ast::{Global, Owner, Program, ShaderId};
 use illume_sl::types::{BaseType, Type};
+use std::cell::OnceCell;
 use std::sync::Arc;
 
 /// The zero value of a type (matrices: the identity, so an unset matrix transforms nothing).
@@ -94,7 +96,8 @@ pub struct Exec<'a> {
     pub(crate) env: &'a ShadingEnv<'a>,
     pub(crate) lights: &'a Lights<'a>,
     pub(crate) n: usize,
-    pub(crate) globals: Vec<Value>,
+    /// Loaded from the grid on first use (`globals.rs`).
+    globals: Vec<OnceCell<Value>>,
     frames: Vec<Frame>,
     /// The light of the innermost running `illuminance` body (for `lightsource()`).
     pub(crate) current_light: Option<usize>,
@@ -118,10 +121,8 @@ pub struct Exec<'a> {
 }
 
 impl<'a> Exec<'a> {
-    /// An executor with the globals read from `grid` (P, N, Ng, I, s, t, …; `Ci = 0`, and
-    /// `Oi = Os` as PRMan, BMRT and Aqsis start it: a surface shader that sets only `Ci` is
-    /// opaque there, and real shaders such as Aqsis's regression `test.sl`/`mxmatch.sl` rely
-    /// on it; starting at 0 made them transparent, so front and back surfaces summed).
+    /// An executor with the globals read from `grid` when first used (see `globals.rs` for
+    /// their starting values).
     pub fn new(
         prog: &'a Program,
         grid: &'a ShadingGrid,
@@ -129,35 +130,13 @@ impl<'a> Exec<'a> {
         lights: &'a Lights<'a>,
     ) -> Exec<'a> {
         let n = grid.len();
-        let mut globals: Vec<Value> = Global::ALL.iter().map(|g| zero_of(g.ty())).collect();
-        let tv = |v: &Vec<Vec3>| Value::Triple(Slot::Varying(v.clone()));
-        let fv = |v: &Vec<f32>| Value::Float(Slot::Varying(v.clone()));
-        globals[gidx(Global::P)] = tv(&grid.p);
-        globals[gidx(Global::Ps)] = tv(&grid.p);
-        globals[gidx(Global::N)] = tv(&grid.n);
-        globals[gidx(Global::Ng)] = tv(&grid.ng);
-        globals[gidx(Global::I)] = tv(&grid.i);
-        globals[gidx(Global::dPdu)] = tv(&grid.dpdu);
-        globals[gidx(Global::dPdv)] = tv(&grid.dpdv);
-        globals[gidx(Global::Cs)] = tv(&grid.cs);
-        globals[gidx(Global::Os)] = tv(&grid.os);
-        globals[gidx(Global::Oi)] = tv(&grid.os);
-        globals[gidx(Global::s)] = fv(&grid.s);
-        globals[gidx(Global::t)] = fv(&grid.t);
-        globals[gidx(Global::u)] = fv(&grid.u);
-        globals[gidx(Global::v)] = fv(&grid.v);
-        globals[gidx(Global::du)] = Value::float(grid.du);
-        globals[gidx(Global::dv)] = Value::float(grid.dv);
-        globals[gidx(Global::ncomps)] = Value::float(3.0);
-        globals[gidx(Global::alpha)] = Value::float(1.0);
-        globals[gidx(Global::Ol)] = Value::triple(Vec3::ONE);
         Exec {
             prog,
             grid,
             env,
             lights,
             n,
-            globals,
+            globals: globals::unloaded(),
             frames: Vec::new(),
             current_light: None,
             emission: Emission::default(),
@@ -169,14 +148,6 @@ impl<'a> Exec<'a> {
             messages: Messages::default(),
             relight: None,
         }
-    }
-
-    pub fn global(&self, g: Global) -> &Value {
-        &self.globals[gidx(g)]
-    }
-
-    pub fn set_global(&mut self, g: Global, v: Value) {
-        self.globals[gidx(g)] = v;
     }
 
     pub(crate) fn problem(&mut self, message: String) {

@@ -1,7 +1,7 @@
 //! Variables: the frames of shader bodies and user functions, reads and masked writes of
 //! variables and array elements, `output` arguments written back.
 
-use super::{gidx, Exec};
+use super::Exec;
 use crate::value::{Mask, Slot, Value};
 use illume_sl::ast::{Expr, ExprKind, LValue, Owner, VarId, VarRef};
 use illume_sl::types::Type;
@@ -38,7 +38,7 @@ impl Exec<'_> {
 
     pub(super) fn var_mut(&mut self, r: VarRef) -> Option<&mut Value> {
         match r {
-            VarRef::Global(g) => Some(&mut self.globals[gidx(g)]),
+            VarRef::Global(g) => Some(self.global_mut(g)),
             VarRef::Slot(s) => self
                 .frames
                 .last_mut()
