@@ -223,11 +223,7 @@ impl SlInstance {
                     _ => {}
                 }
             }
-            (
-                exec.global(Global::Ci).clone(),
-                exec.global(Global::Oi).clone(),
-            )
-                .into_pair(n)
+            (exec.take_global(Global::Ci), exec.take_global(Global::Oi)).into_pair(n)
         };
         let mut stats = SlStats::default();
         for i in 0..grid.len() {
@@ -249,11 +245,7 @@ impl SlInstance {
             exec.run_shader(self.shader.id, params);
             Self::report(&exec, env, self.name());
             let n = g.len();
-            (
-                exec.global(Global::P).clone(),
-                exec.global(Global::N).clone(),
-            )
-                .into_pair(n)
+            (exec.take_global(Global::P), exec.take_global(Global::N)).into_pair(n)
         };
         let mut stats = SlStats::default();
         for i in 0..grid.len() {
@@ -343,11 +335,7 @@ impl SlInstance {
             .zip(out)
             .map(|(p, v)| (p.name.clone(), v))
             .collect();
-        let (l, cl) = (
-            exec.global(Global::L).clone(),
-            exec.global(Global::Cl).clone(),
-        )
-            .into_pair(n);
+        let (l, cl) = (exec.take_global(Global::L), exec.take_global(Global::Cl)).into_pair(n);
         let ol = triple_vec(exec.global(Global::Ol), n);
         let directional = exec.emission.directional;
         let lit = exec.emission.lit.take();
@@ -382,7 +370,18 @@ trait IntoPair {
 
 impl IntoPair for (Value, Value) {
     fn into_pair(self, n: usize) -> (Vec<Vec3>, Vec<Vec3>) {
-        (triple_vec(&self.0, n), triple_vec(&self.1, n))
+        (owned_triple_vec(self.0, n), owned_triple_vec(self.1, n))
+    }
+}
+
+/// [`triple_vec`] of a value the caller gives up: its lanes are moved out, not copied, when
+/// nothing else holds them.
+fn owned_triple_vec(v: Value, n: usize) -> Vec<Vec3> {
+    match v {
+        Value::Triple(Slot::Varying(lanes)) if lanes.len() == n => {
+            Arc::try_unwrap(lanes).unwrap_or_else(|shared| shared.to_vec())
+        }
+        v => triple_vec(&v, n),
     }
 }
 

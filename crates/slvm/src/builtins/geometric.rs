@@ -37,8 +37,9 @@ impl Exec<'_> {
             (B::Rotate, 3) => self.matrix(c)?,
             (B::FaceForward, 2) => {
                 let ng = tr(self.global(Global::Ng));
-                let ni = zip2(&tr(&a[0]), &tr(&a[1]), n, |a, b| (*a, *b));
-                Value::Triple(zip2(&ni, &ng, n, |(nn, i), ng| faceforward(*nn, *i, *ng)))
+                Value::Triple(zip3(&tr(&a[0]), &tr(&a[1]), &ng, n, |nn, i, ng| {
+                    faceforward(*nn, *i, *ng)
+                }))
             }
             (B::FaceForward, 3) => {
                 Value::Triple(zip3(&tr(&a[0]), &tr(&a[1]), &tr(&a[2]), n, |x, i, r| {

@@ -52,6 +52,13 @@ impl Exec<'_> {
         self.globals[gidx(g)] = OnceCell::from(v);
     }
 
+    /// The global's final value, moved out of the run (loaded first if never used): what the
+    /// entry points hand back to the grid without copying.
+    pub fn take_global(&mut self, g: Global) -> Value {
+        self.global_mut(g);
+        self.globals[gidx(g)].take().expect("loaded above")
+    }
+
     /// The global for writing (loaded first: a masked write keeps the other points' values).
     pub(super) fn global_mut(&mut self, g: Global) -> &mut Value {
         let k = gidx(g);

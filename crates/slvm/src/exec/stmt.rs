@@ -9,23 +9,31 @@ use illume_sl::ast::{Block, Expr, Global, Stmt, StmtKind, VarRef};
 impl Exec<'_> {
     /// `mask` without the points that returned, broke or continued in the innermost loop.
     pub(super) fn live(&self, mask: &Mask) -> Mask {
-        let Some(f) = self.frames.last() else {
-            return mask.clone();
-        };
+        self.retired(mask).unwrap_or_else(|| mask.clone())
+    }
+
+    /// [`Exec::live`], or `None` when no point has left (the common case: no copy of `mask`).
+    fn retired(&self, mask: &Mask) -> Option<Mask> {
+        let f = self.frames.last()?;
+        let l = f.loops.last();
+        if f.returned.none() && l.is_none_or(|l| l.broken.none() && l.continued.none()) {
+            return None;
+        }
         let mut m = mask.minus(&f.returned);
-        if let Some(l) = f.loops.last() {
+        if let Some(l) = l {
             m = m.minus(&l.broken).minus(&l.continued);
         }
-        m
+        Some(m)
     }
 
     pub(super) fn exec_block(&mut self, block: &Block, mask: &Mask) {
         for stmt in &block.stmts {
-            let m = self.live(mask);
+            let retired = self.retired(mask);
+            let m = retired.as_ref().unwrap_or(mask);
             if m.none() {
                 return;
             }
-            self.exec_stmt(stmt, &m);
+            self.exec_stmt(stmt, m);
         }
     }
 
