@@ -6,8 +6,8 @@
 //!
 //! Files: this one holds the executor state and runs shaders; `stmt.rs` statements and loops,
 //! `light.rs` `illuminance`/`illuminate`/`solar`, `expr.rs` expressions and user calls,
-//! `vars.rs` variables and array elements, `space.rs` coordinate-space conversions; the
-//! built-ins are in `crate::builtins`.
+//! `vars.rs` variables and array elements, `globals.rs` the globals loaded from the grid on
+//! first use, `space.rs` coordinate-space conversions; the built-ins are in `crate::builtins`.
 mod expr;
 mod globals;
 mod light;
