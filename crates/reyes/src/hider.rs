@@ -62,8 +62,8 @@ pub struct Hider<'f> {
 }
 
 impl<'f> Hider<'f> {
-    /// The refine stage: every primitive of the frame bound, culled against the crop region
-    /// (grown by the filter's reach), split across the eye plane and split until diceable.
+    /// The hider for `frame`: its film, and the refiner that culls against the crop region
+    /// (grown by the filter's reach). Refining waits for [`Hider::render_to`].
     pub fn new(frame: &'f Frame) -> Hider<'f> {
         let opts = &frame.options;
         let cam = &frame.camera;
@@ -185,6 +185,8 @@ impl<'f> Hider<'f> {
         // A displaced grid that left its bound needs the displacement-bound loop, which may
         // grow any piece and render again: refine the whole frame up front and start over.
         let report = lazy.unwrap_or_else(|Overflowed| {
+            // Progress counts the lazy pass's buckets as done; the loop adds its own passes.
+            bands.total.store(bands.done.load(Relaxed), Relaxed);
             let mut report = RefineReport::default();
             let mut pieces = refine_frame(frame, &refiner, &mut report);
             warnings.extend(render_until_bounded(
