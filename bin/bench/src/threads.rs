@@ -219,7 +219,7 @@ mod tests {
         assert_eq!(px, 960 * 720);
         assert!(text.contains("Format 960 720 1\n"));
         assert!(text.contains("Display \"out.tif\" \"tiff\" \"rgba\"\n"));
-        assert!(!text.contains("t.tif"));
+        assert!(!text.contains("\"t.tif\""));
         assert!(scaled("WorldBegin\n", 2).is_err());
         assert!(scaled("Format x 3 1\n", 2).is_err());
     }
