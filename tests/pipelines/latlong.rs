@@ -125,16 +125,12 @@ fn the_chrome_sphere_looks_up_the_analytic_colour_in_the_mirror_direction() {
             let px = &img.rgba[(y as usize * RES + x as usize) * 4..][..4];
             let got = DVec3::new(px[0].into(), px[1].into(), px[2].into());
             let err = (got - want).abs().max_element();
-            // 0.025: the map is a smooth function of direction; bilinear texel interpolation
+            // 0.005: the map is a smooth function of direction; bilinear texel interpolation
             // errs by ~h²/8·|f''| ≈ 3e-4 (h = 2π/128), half-float texels by ≤ 5e-4, and the
-            // lookup's own filter footprint blurs a nearly linear variation (second order).
-            // But a vertex's lookup covers the micropolygon ahead of it and a micropolygon's
-            // colour is the mean of its four vertices, so the lookup lands half a micropolygon
-            // ahead: first order where the mirror direction sweeps fast, measured 0.016 at the
-            // grid's corner pixel (36, 36), 40 px from the centre (0.0018 when "constant" took
-            // the first vertex alone). A flipped or rotated map is wrong by tenths.
+            // lookup's own filter footprint blurs a nearly linear variation (second order). A
+            // flipped or rotated map is wrong by tenths.
             assert!(
-                err < 0.025,
+                err < 0.005,
                 "pixel ({x}, {y}): mirror direction {r:?} expects {want:?}, rendered {got:?}"
             );
             worst = worst.max(err);

@@ -137,13 +137,14 @@ fn the_checkers_labelled_quadrants_land_where_s_and_t_say() {
          s flipped {flipped_s:.4}, transposed {transposed:.4}"
     );
     // The texture filter's footprint reaches beyond each pixel's 2×2 texels (Gaussian mip
-    // filtering), softening checker edges and glyph strokes. A vertex's lookup covers the
-    // micropolygon ahead of it (`ShadingGrid::footprint`), and a micropolygon's colour is the
-    // mean of its four vertices (under "constant" as under "smooth"), so a pixel shows the
-    // 2×2 micropolygons from its own to half a pixel beyond: measured 0.071 (0.0705 with
-    // "smooth"; 0.036 when "constant" took the first vertex alone); 0.09 leaves room, and
+    // filtering), softening checker edges and glyph strokes. A vertex's lookup covers one
+    // micropolygon centred on it (`ShadingGrid::centred_footprint`) and a micropolygon's
+    // colour is the mean of its four vertices, so a pixel shows the texture filtered over the
+    // 2×2 micropolygons around it (a tent two pixels wide, centred): measured 0.080 (0.036
+    // when "constant" took the first vertex alone, whose lookup covered exactly its own
+    // micropolygon, but whose lighting sat half a micropolygon off); 0.1 leaves room, and
     // every wrong orientation is about 0.32 (at least 3.5× the upright difference required).
-    assert!(upright < 0.09, "upright mapping differs by {upright}");
+    assert!(upright < 0.1, "upright mapping differs by {upright}");
     for (what, d) in [
         ("t flipped", flipped_t),
         ("s flipped", flipped_s),
@@ -164,8 +165,8 @@ fn the_checkers_labelled_quadrants_land_where_s_and_t_say() {
     for (q, (label, c)) in colours.iter().enumerate() {
         // The quadrant's top-left 16×16 pixels: a light checker square, away from the label.
         let (x0, y0) = ((q % 2) * n / 2, (q / 2) * n / 2);
-        // Pixels 2–4: a micropolygon's colour averages the lookups of its four vertices, each
-        // over the micropolygon ahead of it, so the label's strokes reach a pixel further.
+        // Pixels 2–4: a micropolygon's colour averages the lookups of its four vertices, so
+        // the label's strokes reach a pixel further than one micropolygon's lookup would.
         for y in y0 + 2..y0 + 5 {
             for x in x0 + 2..x0 + 5 {
                 let p = &rgba[(y * n + x) * 4..(y * n + x) * 4 + 3];
