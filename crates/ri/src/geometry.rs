@@ -19,7 +19,7 @@ impl Ri {
             );
             return;
         }
-        if !self.world_active || !self.detail_visible() {
+        if !self.world_active || self.memory_exceeded || !self.detail_visible() {
             return;
         }
         if !crate::options::check_vertices(&self.options.limits, req, span, &mut self.diagnostics) {
@@ -32,6 +32,10 @@ impl Ri {
                 _ => self.ctm,
             };
             let prims = self.build_geometry(req, span, ctm).unwrap_or_default();
+            let bytes = crate::memory::request_bytes(req, prims.len());
+            if !self.charge_memory(bytes, span, req.name()) {
+                return;
+            }
             let m = self.motion.as_mut().expect("checked above");
             m.first
                 .get_or_insert((span.clone(), req.name().to_string()));
@@ -41,6 +45,10 @@ impl Ri {
         match self.ctm_motion.clone() {
             None => {
                 let prims = self.build_geometry(req, span, self.ctm).unwrap_or_default();
+                let bytes = crate::memory::request_bytes(req, prims.len());
+                if !self.charge_memory(bytes, span, req.name()) {
+                    return;
+                }
                 self.push_primitives(vec![0.0], vec![prims], span, req.name());
             }
             Some(mm) => {
@@ -51,6 +59,10 @@ impl Ri {
                         Some(p) => keys.push(p),
                         None => return,
                     }
+                }
+                let n: usize = keys.iter().map(Vec::len).sum();
+                if !self.charge_memory(crate::memory::request_bytes(req, n), span, req.name()) {
+                    return;
                 }
                 self.push_primitives(mm.times.clone(), keys, span, req.name());
             }
