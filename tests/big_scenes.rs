@@ -157,3 +157,50 @@ fn the_parser_reads_a_gigabyte_stream_a_chunk_at_a_time() {
     let ahead = read.get() - 100_000 * line;
     assert!(ahead <= 1 << 20, "read {ahead} bytes beyond 10⁵ requests");
 }
+
+/// A 16×16-quad `PointsPolygons` with per-vertex colour: as one request (kept as its request
+/// and built when the hider splits it) and cut into strips of 8 faces with their own vertices
+/// (below the deferral threshold: built at once, one primitive per face). Same faces, same
+/// numbers, same bits.
+#[test]
+fn a_deferred_mesh_renders_the_pixels_of_its_faces() {
+    let q = 16;
+    let vertex = |i: usize, j: usize| {
+        let (x, y) = (i as f32 / q as f32 * 1.6 - 0.8, j as f32 / q as f32 * 1.6 - 0.8);
+        let z = 0.1 * (3.0 * x + 2.0 * y).sin();
+        (format!("{x} {y} {z} "), format!("{} {} 0.5 ", i as f32 / q as f32, j as f32 / q as f32))
+    };
+    // The quads of columns i0..i1 in rows j0..j1, indexing their own vertex block.
+    let mesh = |i0: usize, i1: usize, j0: usize, j1: usize| {
+        let w = i1 - i0 + 1;
+        let (mut p, mut cs, mut verts) = (String::new(), String::new(), String::new());
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let (pv, cv) = vertex(i, j);
+                p.push_str(&pv);
+                cs.push_str(&cv);
+            }
+        }
+        for j in 0..j1 - j0 {
+            for i in 0..w - 1 {
+                let a = j * w + i;
+                write!(verts, "{a} {} {} {} ", a + 1, a + w + 1, a + w).unwrap();
+            }
+        }
+        let nverts = "4 ".repeat((w - 1) * (j1 - j0));
+        format!("PointsPolygons [{nverts}] [{verts}] \"P\" [{p}] \"Cs\" [{cs}]\n")
+    };
+    let whole = scene(&format!("Rotate 30 1 0.5 0\n{}", mesh(0, q, 0, q)));
+    let strips: String = (0..q)
+        .flat_map(|j| [mesh(0, 8, j, j + 1), mesh(8, q, j, j + 1)])
+        .collect();
+    let cut = scene(&format!("Rotate 30 1 0.5 0\n{strips}"));
+    let (a, b) = (one_frame(&whole), one_frame(&cut));
+    assert_eq!(a.primitives.len(), 1, "kept as one request");
+    assert_eq!(b.primitives.len(), q * q);
+    let (pa, pb) = (pixels(&a), pixels(&b));
+    let covered = pb.chunks(4).filter(|p| p[3] > 0.0).count();
+    assert!(covered > 96 * 96 / 4, "the mesh is on screen: {covered} pixels");
+    let differ = pa.iter().zip(&pb).filter(|(x, y)| x != y).count();
+    assert_eq!(differ, 0, "{differ} of {} values differ", pa.len());
+}

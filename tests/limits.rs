@@ -121,16 +121,16 @@ fn an_object_that_instances_itself_stops_at_the_nesting_limit() {
 
 #[test]
 fn past_the_memory_limit_the_rest_of_the_world_is_culled_with_one_error() {
-    // 1 MB in all, 64 KB of it the texture cache: (1024 - 64) KB / 512 bytes per sphere
-    // (illume_ri::memory::PER_PRIMITIVE, no parameter data) = 1920 spheres fit.
+    // 1 MB in all, 64 KB of it the texture cache: (1024 - 64) KB / 1024 bytes per sphere
+    // (illume_ri::memory::PER_PRIMITIVE, no parameter data) = 960 spheres fit.
     let spheres = "Sphere 1 -1 1 360\n".repeat(3000);
     let rib = format!(
         "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [64]\n\
          WorldBegin\n{spheres}WorldEnd\n{WORLD}"
     );
     let (frames, diags) = parse(&rib);
-    assert_eq!(illume_ri::memory::PER_PRIMITIVE, 512);
-    let fit = (1024 - 64) * 1024 / 512;
+    assert_eq!(illume_ri::memory::PER_PRIMITIVE, 1024);
+    let fit = (1024 - 64) * 1024 / 1024;
     let e = find(&diags, Severity::Error, "\"memory\"");
     // The first sphere is on line 4; the one that does not fit is sphere fit + 1.
     assert!(e.starts_with(&format!("test.rib:{}:1:", 4 + fit)), "{e}");
@@ -143,12 +143,12 @@ fn past_the_memory_limit_the_rest_of_the_world_is_culled_with_one_error() {
 #[test]
 fn instances_count_against_the_memory_limit_too() {
     let rib = format!(
-        "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [1000]\n\
+        "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [976]\n\
          WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\nObjectEnd\n{}WorldEnd\n",
         "ObjectInstance 1\n".repeat(100)
     );
     let (frames, diags) = parse(&rib);
-    // (1024 - 1000) KB / 512 bytes = 48 instances.
+    // (1024 - 976) KB / 1024 bytes = 48 instances.
     let e = find(&diags, Severity::Error, "\"memory\"");
     assert!(e.starts_with("test.rib:55:1: error: ObjectInstance:"), "{e}");
     assert_eq!(frames[0].primitives.len(), 48);

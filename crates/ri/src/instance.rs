@@ -37,10 +37,12 @@ pub(crate) struct SharedObject {
     requests: Arc<Vec<Spanned<Request>>>,
     steps: Vec<Step>,
     /// The declarations when the object was defined (its parameter lists were read under them).
-    declarations: Declarations,
+    declarations: Arc<Declarations>,
     /// Object-space bound of every primitive, padded for rounding.
     lo: DVec3,
     hi: DVec3,
+    /// A deferred mesh's bound, already in camera space (its faces' own bounds).
+    camera_bound: Option<Bound>,
     /// Whether the object's own transformations mirror (all agree, or it is not shared).
     mirrors: bool,
     /// The largest vertex count one of its requests declares (for `Option "limits"`).
@@ -81,6 +83,15 @@ fn relative_transform(req: &Request) -> Option<DMat4> {
         Skew(a) => crate::transform::skew(a).ok(),
         ConcatTransform(m) => Some(crate::transform::from_rib(m)),
         _ => None,
+    }
+}
+
+impl Ri {
+    /// The declarations, shared until the next `Declare` changes them.
+    pub(crate) fn shared_declarations(&mut self) -> Arc<Declarations> {
+        self.declarations_shared
+            .get_or_insert_with(|| Arc::new(self.declarations.clone()))
+            .clone()
     }
 }
 
@@ -141,12 +152,45 @@ impl SharedObject {
         Some(SharedObject {
             requests,
             steps,
-            declarations: ri.declarations.clone(),
+            declarations: ri.shared_declarations(),
             lo: lo - DVec3::splat(pad),
             hi: hi + DVec3::splat(pad),
+            camera_bound: None,
             mirrors: signs.0,
             vertices,
         })
+    }
+
+    /// One geometry request, built at `camera_from_object` into `built` (reported on already):
+    /// the mesh is kept as its request and built again when the hider splits it, instead of
+    /// as its faces (a 32×32-quad `PointsPolygons` is 1024 polygons of about 1 KB each, 25
+    /// times the request's numbers). Returns the deferred primitive, `None` when `built` is
+    /// empty.
+    pub(crate) fn deferred(
+        ri: &mut Ri,
+        request: Spanned<Request>,
+        camera_from_object: DMat4,
+        built: &[Box<dyn Primitive>],
+    ) -> Option<InstancePrimitive> {
+        let bound = built.iter().fold(Bound::EMPTY, |b, p| b.union(p.bound()));
+        if bound.is_empty() {
+            return None;
+        }
+        let object = SharedObject {
+            requests: Arc::new(vec![request]),
+            steps: vec![Step::Geometry(0)],
+            declarations: ri.shared_declarations(),
+            lo: bound.min.as_dvec3(),
+            hi: bound.max.as_dvec3(),
+            camera_bound: Some(bound),
+            mirrors: false,
+            vertices: 0,
+        };
+        Some(InstancePrimitive::new(
+            Arc::new(object),
+            camera_from_object,
+            ri.attributes.clone(),
+        ))
     }
 
     /// Whether an instance placed by `camera_from_object` has a mirrored object space.
@@ -186,8 +230,8 @@ impl SharedObject {
     }
 }
 
-/// One `ObjectInstance` of a [`SharedObject`]: an aggregate the hider splits into the
-/// object's primitives when it first needs them.
+/// One `ObjectInstance` of a [`SharedObject`] (or one deferred mesh): an aggregate the hider
+/// splits into the object's primitives when it first needs them.
 #[derive(Debug)]
 pub struct InstancePrimitive {
     object: Arc<SharedObject>,
@@ -211,6 +255,9 @@ impl InstancePrimitive {
 
 impl Primitive for InstancePrimitive {
     fn bound(&self) -> Bound {
+        if let Some(b) = self.object.camera_bound {
+            return b;
+        }
         Bound::of_transformed_box(&self.camera_from_object, self.object.lo, self.object.hi)
     }
 

@@ -87,6 +87,8 @@ pub struct Ri {
     pub(crate) objects: HashMap<Handle, Arc<Vec<Spanned<Request>>>>,
     /// The objects whose instances share one definition (see `instance.rs`).
     pub(crate) shared_objects: HashMap<Handle, Arc<crate::instance::SharedObject>>,
+    /// `declarations` as the shared objects and deferred meshes keep them (until a `Declare`).
+    pub(crate) declarations_shared: Option<Arc<Declarations>>,
     pub(crate) archives: HashMap<String, Arc<Vec<Spanned<Request>>>>,
     pub(crate) frames: Vec<Frame>,
     pub(crate) diagnostics: Diagnostics,
@@ -129,6 +131,7 @@ impl Ri {
             recording: None,
             objects: HashMap::new(),
             shared_objects: HashMap::new(),
+            declarations_shared: None,
             archives: HashMap::new(),
             frames: Vec::new(),
             diagnostics: Diagnostics::default(),
@@ -268,7 +271,10 @@ impl Ri {
                 name: n,
                 declaration,
             } => match Declaration::parse(&declaration) {
-                Ok(d) => self.declarations.declare(&n, d),
+                Ok(d) => {
+                    self.declarations.declare(&n, d);
+                    self.declarations_shared = None;
+                }
                 Err(e) => self.diagnostics.error(&span, &name, format!("{n}: {e}")),
             },
             FrameBegin(n) => {
