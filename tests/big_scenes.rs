@@ -22,11 +22,25 @@ fn scene(world: &str) -> String {
 fn object_body(m: usize) -> String {
     let mut s = String::new();
     for i in 0..m * m {
-        let (x, y) = ((i % m) as f32 / m as f32 - 0.45, (i / m) as f32 / m as f32 - 0.45);
+        let (x, y) = (
+            (i % m) as f32 / m as f32 - 0.45,
+            (i / m) as f32 / m as f32 - 0.45,
+        );
         let r = 0.4 / m as f32;
-        write!(s, "TransformBegin\nTranslate {x} {y} 0\nRotate {} 0.3 1 0.2\n", 17 * i).unwrap();
+        write!(
+            s,
+            "TransformBegin\nTranslate {x} {y} 0\nRotate {} 0.3 1 0.2\n",
+            17 * i
+        )
+        .unwrap();
         if i % 3 == 0 {
-            writeln!(s, "AttributeBegin\nSkew 20 0 1 0 1 0 0\nTorus {} {} 0 360 360\nAttributeEnd", r * 0.7, r * 0.3).unwrap();
+            writeln!(
+                s,
+                "AttributeBegin\nSkew 20 0 1 0 1 0 0\nTorus {} {} 0 360 360\nAttributeEnd",
+                r * 0.7,
+                r * 0.3
+            )
+            .unwrap();
         } else {
             writeln!(s, "Sphere {r} {} {r} 300", -r).unwrap();
         }
@@ -83,14 +97,20 @@ fn shared_instances_render_the_pixels_of_replayed_ones() {
         "ObjectBegin 7\n{body}ObjectEnd\n{}",
         placements(k, "ObjectInstance 7\n")
     ));
-    let explicit = scene(&placements(k, &format!("AttributeBegin\n{body}AttributeEnd\n")));
+    let explicit = scene(&placements(
+        k,
+        &format!("AttributeBegin\n{body}AttributeEnd\n"),
+    ));
     let (a, b) = (one_frame(&instanced), one_frame(&explicit));
     assert_eq!(a.primitives.len(), k * k, "one primitive per instance");
     assert_eq!(b.primitives.len(), k * k * m * m);
     assert_eq!(a.primitives.iter().filter(|p| p.mirrored).count(), 1);
     let (pa, pb) = (pixels(&a), pixels(&b));
     let covered = pb.chunks(4).filter(|p| p[3] > 0.0).count();
-    assert!(covered > 96 * 96 / 10, "the scene is on screen: {covered} pixels");
+    assert!(
+        covered > 96 * 96 / 10,
+        "the scene is on screen: {covered} pixels"
+    );
     let differ = pa.iter().zip(&pb).filter(|(x, y)| x != y).count();
     assert_eq!(differ, 0, "{differ} of {} values differ", pa.len());
 }
@@ -99,7 +119,11 @@ fn shared_instances_render_the_pixels_of_replayed_ones() {
 /// primitives depend on the state at the instance), with the same result as before.
 #[test]
 fn objects_with_attributes_or_absolute_transforms_are_replayed() {
-    for inside in ["Color [1 0 0]\n", "Identity\n", "Basis \"bezier\" 3 \"bezier\" 3\n"] {
+    for inside in [
+        "Color [1 0 0]\n",
+        "Identity\n",
+        "Basis \"bezier\" 3 \"bezier\" 3\n",
+    ] {
         let rib = scene(&format!(
             "ObjectBegin 1\n{inside}Sphere 0.1 -0.1 0.1 360\nObjectEnd\n{}",
             placements(2, "ObjectInstance 1\n")
@@ -149,7 +173,11 @@ fn the_parser_reads_a_gigabyte_stream_a_chunk_at_a_time() {
     let mut parser = illume_rib::Parser::new(source, "big.rib");
     let first = parser.next().unwrap().unwrap();
     assert_eq!(first.value.name(), "Sphere");
-    assert!(read.get() <= 1 << 20, "read {} bytes for one request", read.get());
+    assert!(
+        read.get() <= 1 << 20,
+        "read {} bytes for one request",
+        read.get()
+    );
     let line = LINE.len() as u64;
     for _ in 1..100_000 {
         parser.next().unwrap().unwrap();
@@ -166,9 +194,15 @@ fn the_parser_reads_a_gigabyte_stream_a_chunk_at_a_time() {
 fn a_deferred_mesh_renders_the_pixels_of_its_faces() {
     let q = 16;
     let vertex = |i: usize, j: usize| {
-        let (x, y) = (i as f32 / q as f32 * 1.6 - 0.8, j as f32 / q as f32 * 1.6 - 0.8);
+        let (x, y) = (
+            i as f32 / q as f32 * 1.6 - 0.8,
+            j as f32 / q as f32 * 1.6 - 0.8,
+        );
         let z = 0.1 * (3.0 * x + 2.0 * y).sin();
-        (format!("{x} {y} {z} "), format!("{} {} 0.5 ", i as f32 / q as f32, j as f32 / q as f32))
+        (
+            format!("{x} {y} {z} "),
+            format!("{} {} 0.5 ", i as f32 / q as f32, j as f32 / q as f32),
+        )
     };
     // The quads of columns i0..i1 in rows j0..j1, indexing their own vertex block.
     let mesh = |i0: usize, i1: usize, j0: usize, j1: usize| {
@@ -200,7 +234,10 @@ fn a_deferred_mesh_renders_the_pixels_of_its_faces() {
     assert_eq!(b.primitives.len(), q * q);
     let (pa, pb) = (pixels(&a), pixels(&b));
     let covered = pb.chunks(4).filter(|p| p[3] > 0.0).count();
-    assert!(covered > 96 * 96 / 4, "the mesh is on screen: {covered} pixels");
+    assert!(
+        covered > 96 * 96 / 4,
+        "the mesh is on screen: {covered} pixels"
+    );
     let differ = pa.iter().zip(&pb).filter(|(x, y)| x != y).count();
     assert_eq!(differ, 0, "{differ} of {} values differ", pa.len());
 }

@@ -134,7 +134,10 @@ fn past_the_memory_limit_the_rest_of_the_world_is_culled_with_one_error() {
     let e = find(&diags, Severity::Error, "\"memory\"");
     // The first sphere is on line 4; the one that does not fit is sphere fit + 1.
     assert!(e.starts_with(&format!("test.rib:{}:1:", 4 + fit)), "{e}");
-    assert!(e.contains("exceed Option \"limits\" \"memory\" 1 MB"), "{e}");
+    assert!(
+        e.contains("exceed Option \"limits\" \"memory\" 1 MB"),
+        "{e}"
+    );
     assert_eq!(frames[0].primitives.len(), fit);
     // The next world starts a new estimate.
     assert_eq!(frames[1].primitives.len(), 1);
@@ -150,7 +153,10 @@ fn instances_count_against_the_memory_limit_too() {
     let (frames, diags) = parse(&rib);
     // (1024 - 976) KB / 1024 bytes = 48 instances.
     let e = find(&diags, Severity::Error, "\"memory\"");
-    assert!(e.starts_with("test.rib:55:1: error: ObjectInstance:"), "{e}");
+    assert!(
+        e.starts_with("test.rib:55:1: error: ObjectInstance:"),
+        "{e}"
+    );
     assert_eq!(frames[0].primitives.len(), 48);
 }
 
@@ -252,7 +258,9 @@ fn shader_run_time_warnings_name_the_statement_in_the_shader_source() {
     let (code, err) = render(&bin, &dir, "scene.rib");
     assert_eq!(code, 0, "{err}");
     for (line, col, space) in [(3, 5, "nowhere"), (7, 9, "elsewhere")] {
-        let at = format!("lost.sl:{line}:{col}: warning: shader `lost`: transform: unknown space \"{space}\"");
+        let at = format!(
+            "lost.sl:{line}:{col}: warning: shader `lost`: transform: unknown space \"{space}\""
+        );
         assert!(err.contains(&at), "want `{at}` in {err}");
     }
     assert!(!err.contains("<internal>"), "{err}");

@@ -124,7 +124,8 @@ impl Ri {
         // The instance itself is what the frame keeps; its primitives exist only while the
         // hider works on the buckets it covers.
         if self.charge_memory(crate::memory::PER_PRIMITIVE, span, "ObjectInstance") {
-            let primitive = InstancePrimitive::new(object.clone(), self.ctm, self.attributes.clone());
+            let primitive =
+                InstancePrimitive::new(object.clone(), self.ctm, self.attributes.clone());
             self.primitives.push(FramePrimitive {
                 primitive: Box::new(primitive),
                 attributes: self.attributes.clone(),

@@ -266,8 +266,7 @@ impl Primitive for InstancePrimitive {
     }
 
     fn split(&self) -> Vec<Box<dyn Primitive>> {
-        self.object
-            .build(self.camera_from_object, &self.attributes)
+        self.object.build(self.camera_from_object, &self.attributes)
     }
 
     /// Never called (not diceable); an empty grid rather than a panic.

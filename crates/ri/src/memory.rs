@@ -85,7 +85,10 @@ impl Ri {
         }
         let limits = &self.options.limits;
         let texture = u64::from(self.options.texture_memory) * 1024;
-        let total = self.frame_bytes.saturating_add(bytes).saturating_add(texture);
+        let total = self
+            .frame_bytes
+            .saturating_add(bytes)
+            .saturating_add(texture);
         if total <= limits.memory {
             self.frame_bytes += bytes;
             return true;
