@@ -120,6 +120,47 @@ fn an_object_that_instances_itself_stops_at_the_nesting_limit() {
 }
 
 #[test]
+fn past_the_memory_limit_the_rest_of_the_world_is_culled_with_one_error() {
+    // 1 MB in all, 64 KB of it the texture cache: (1024 - 64) KB / 1024 bytes per sphere
+    // (illume_ri::memory::PER_PRIMITIVE, no parameter data) = 960 spheres fit.
+    let spheres = "Sphere 1 -1 1 360\n".repeat(3000);
+    let rib = format!(
+        "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [64]\n\
+         WorldBegin\n{spheres}WorldEnd\n{WORLD}"
+    );
+    let (frames, diags) = parse(&rib);
+    assert_eq!(illume_ri::memory::PER_PRIMITIVE, 1024);
+    let fit = (1024 - 64) * 1024 / 1024;
+    let e = find(&diags, Severity::Error, "\"memory\"");
+    // The first sphere is on line 4; the one that does not fit is sphere fit + 1.
+    assert!(e.starts_with(&format!("test.rib:{}:1:", 4 + fit)), "{e}");
+    assert!(
+        e.contains("exceed Option \"limits\" \"memory\" 1 MB"),
+        "{e}"
+    );
+    assert_eq!(frames[0].primitives.len(), fit);
+    // The next world starts a new estimate.
+    assert_eq!(frames[1].primitives.len(), 1);
+}
+
+#[test]
+fn instances_count_against_the_memory_limit_too() {
+    let rib = format!(
+        "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [976]\n\
+         WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\nObjectEnd\n{}WorldEnd\n",
+        "ObjectInstance 1\n".repeat(100)
+    );
+    let (frames, diags) = parse(&rib);
+    // (1024 - 976) KB / 1024 bytes = 48 instances.
+    let e = find(&diags, Severity::Error, "\"memory\"");
+    assert!(
+        e.starts_with("test.rib:55:1: error: ObjectInstance:"),
+        "{e}"
+    );
+    assert_eq!(frames[0].primitives.len(), 48);
+}
+
+#[test]
 fn a_bad_limit_value_is_an_error_and_keeps_the_default() {
     let rib = format!("Option \"limits\" \"pixelsamples\" [-3]\nPixelSamples 100 100\n{WORLD}");
     let (frames, diags) = parse(&rib);
@@ -190,13 +231,39 @@ fn a_shader_that_loops_forever_is_stopped_with_an_error_naming_it() {
     let t = std::time::Instant::now();
     let (code, err) = render(&bin, &dir, "scene.rib");
     assert_eq!(code, 1, "{err}");
+    // Named at the inner loop statement of the shader's source, not at `<internal>:0:0`.
     assert!(
-        err.contains("error: shader `spin`: a loop (line 5:"),
+        err.contains("spin.sl:5:9: error: shader `spin`: a loop (line 5:"),
         "{err}"
     );
     assert!(err.contains("was stopped"), "{err}");
     // A generous bound on a 2-core machine: without the shared budget the nest runs 2³² times.
     assert!(t.elapsed().as_secs() < 120, "took {:?}", t.elapsed());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn shader_run_time_warnings_name_the_statement_in_the_shader_source() {
+    let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
+        return;
+    };
+    let dir = scratch("slwarn");
+    let sl = "surface lost()\n{\n    point q = transform(\"nowhere\", P);\n    \
+              Ci = color(1, 1, 1);\n    Oi = 1;\n\n        q = transform(\"elsewhere\", q);\n}\n";
+    std::fs::write(dir.join("lost.sl"), sl).unwrap();
+    let scene = "Format 8 8 1\nPixelSamples 1 1\nDisplay \"out.tif\" \"file\" \"rgba\"\n\
+                 Projection \"perspective\" \"fov\" [30]\nWorldBegin\nSurface \"lost\"\n\
+                 Translate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
+    std::fs::write(dir.join("scene.rib"), scene).unwrap();
+    let (code, err) = render(&bin, &dir, "scene.rib");
+    assert_eq!(code, 0, "{err}");
+    for (line, col, space) in [(3, 5, "nowhere"), (7, 9, "elsewhere")] {
+        let at = format!(
+            "lost.sl:{line}:{col}: warning: shader `lost`: transform: unknown space \"{space}\""
+        );
+        assert!(err.contains(&at), "want `{at}` in {err}");
+    }
+    assert!(!err.contains("<internal>"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

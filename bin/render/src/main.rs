@@ -276,6 +276,10 @@ fn render_frame(
             "  counts    primitives {}  pieces {}  grids {}  micropolygons {}  samples {}  culled pieces {}  occluded grids {}  non-finite shaded points {}",
             s.primitives, s.pieces, s.grids, s.micropolygons, s.samples, s.culled_pieces, s.occluded_grids, s.nonfinite
         );
+        eprintln!(
+            "  live      peak pieces {}  peak grids {}",
+            s.peak_live_pieces, s.peak_live_grids
+        );
         if render_seconds > 0.0 {
             eprintln!(
                 "  rate      {:.0} micropolygons/s",

@@ -78,15 +78,18 @@ fn finish(mut rendered: Rendered, shading: &FrameShading) -> Rendered {
     rendered.stats.nonfinite = shading.nonfinite.load(Relaxed);
     // Shading problems found while rendering (missing maps, unknown spaces), once each; then
     // shaders that could not finish (runaway loops), which are errors.
-    let warnings = shading.warnings.messages().into_iter();
-    let errors = shading.warnings.errors().into_iter();
+    // SL run-time problems carry the shader statement's file:line:col.
+    let warnings = shading.warnings.located_messages().into_iter();
+    let errors = shading.warnings.located_errors().into_iter();
     rendered.warnings.extend(
         (warnings.map(|m| (Severity::Warning, illume_ri::ErrorKind::MissingData, m)))
             .chain(errors.map(|m| (Severity::Error, illume_ri::ErrorKind::Limit, m)))
-            .map(|(severity, kind, message)| Diagnostic {
+            .map(|(severity, kind, (at, message))| Diagnostic {
                 severity,
                 kind,
-                span: illume_rib::Span::synthetic(),
+                span: at.map_or_else(illume_rib::Span::synthetic, |a| {
+                    illume_rib::Span::new(a.file.into(), a.line, a.col, 0)
+                }),
                 request: None,
                 message,
             }),

@@ -14,6 +14,7 @@ use crate::sample_buffer::{SampleBuffer, SampleSetup};
 use crate::shader::GridShader;
 use crate::visible::composite;
 use illume_ri::Frame;
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
@@ -73,31 +74,73 @@ impl BucketLayout {
         [px0, (px0 + bw).min(cx1), py0, (py0 + bh).min(cy1)]
     }
 
-    /// Per bucket, the pieces whose padded raster bound overlaps it, nearest first.
-    pub fn lists(&self, pieces: &[Piece]) -> Vec<Vec<usize>> {
+    /// The buckets bx0 bx1 by0 by1 (inclusive) a raster bound grown by the filter margin
+    /// overlaps; `None` when it misses the bucket grid.
+    pub fn buckets_of(&self, raster: &[f32; 4]) -> Option<[usize; 4]> {
         let [nbx, nby] = self.count;
         let [ox, oy] = [self.crop[0] as f32, self.crop[2] as f32];
         let [bw, bh] = self.size.map(|s| s as f32);
         let m = self.margin;
-        let mut lists: Vec<Vec<usize>> = vec![Vec::new(); nbx * nby];
+        let bx0 = ((raster[0] - m - ox) / bw).floor().max(0.0) as usize;
+        let bx1 = ((raster[1] + m - ox) / bw).floor();
+        let by0 = ((raster[2] - m - oy) / bh).floor().max(0.0) as usize;
+        let by1 = ((raster[3] + m - oy) / bh).floor();
+        if bx1 < 0.0 || by1 < 0.0 {
+            return None;
+        }
+        let (bx1, by1) = ((bx1 as usize).min(nbx - 1), (by1 as usize).min(nby - 1));
+        (bx0 <= bx1 && by0 <= by1).then_some([bx0, bx1, by0, by1])
+    }
+
+    /// The first band (bucket row) a raster bound grown by the filter margin reaches, clamped
+    /// to the bucket grid: where a lazy refine picks up a piece with that bound.
+    pub fn band_of(&self, raster: &[f32; 4]) -> usize {
+        let oy = self.crop[2] as f32;
+        let bh = self.size[1] as f32;
+        let by0 = ((raster[2] - self.margin - oy) / bh).floor().max(0.0) as usize;
+        by0.min(self.count[1] - 1)
+    }
+
+    /// Per bucket of band `band`, the pieces (of `pieces`, in refine order) whose padded raster
+    /// bound overlaps it, nearest first.
+    pub fn band_lists(&self, band: usize, pieces: &[Piece]) -> Vec<Vec<usize>> {
+        let mut lists: Vec<Vec<usize>> = vec![Vec::new(); self.count[0]];
         for (id, p) in pieces.iter().enumerate() {
-            let bx0 = ((p.raster[0] - m - ox) / bw).floor().max(0.0) as usize;
-            let bx1 = ((p.raster[1] + m - ox) / bw).floor();
-            let by0 = ((p.raster[2] - m - oy) / bh).floor().max(0.0) as usize;
-            let by1 = ((p.raster[3] + m - oy) / bh).floor();
-            if bx1 < 0.0 || by1 < 0.0 {
-                continue;
-            }
-            for by in by0..=(by1 as usize).min(nby - 1) {
-                for bx in bx0..=(bx1 as usize).min(nbx - 1) {
-                    lists[by * nbx + bx].push(id);
+            if let Some([bx0, bx1, by0, by1]) = self.buckets_of(&p.raster) {
+                if (by0..=by1).contains(&band) {
+                    for list in &mut lists[bx0..=bx1] {
+                        list.push(id);
+                    }
                 }
             }
         }
-        for l in &mut lists {
-            l.sort_by(|&a, &b| pieces[a].zmin.total_cmp(&pieces[b].zmin).then(a.cmp(&b)));
-        }
+        sort_nearest_first(&mut lists, pieces);
         lists
+    }
+
+    /// Per bucket, the pieces whose padded raster bound overlaps it, nearest first.
+    pub fn lists(&self, pieces: &[Piece]) -> Vec<Vec<usize>> {
+        let nbx = self.count[0];
+        let mut lists: Vec<Vec<usize>> = vec![Vec::new(); self.bucket_count()];
+        for (id, p) in pieces.iter().enumerate() {
+            let Some([bx0, bx1, by0, by1]) = self.buckets_of(&p.raster) else {
+                continue;
+            };
+            for by in by0..=by1 {
+                for list in &mut lists[by * nbx + bx0..=by * nbx + bx1] {
+                    list.push(id);
+                }
+            }
+        }
+        sort_nearest_first(&mut lists, pieces);
+        lists
+    }
+}
+
+/// Nearest piece first; at equal depth the earlier piece in refine order (`pieces` are in it).
+fn sort_nearest_first(lists: &mut [Vec<usize>], pieces: &[Piece]) {
+    for l in lists {
+        l.sort_by(|&a, &b| pieces[a].zmin.total_cmp(&pieces[b].zmin).then(a.cmp(&b)));
     }
 }
 
@@ -123,9 +166,22 @@ impl GridSlot {
         }
     }
 
-    fn get(&self, make: impl FnOnce() -> Option<Arc<ShadedGrid>>) -> Option<Arc<ShadedGrid>> {
+    fn get(
+        &self,
+        make: impl FnOnce() -> Option<Arc<ShadedGrid>>,
+        counters: &Counters,
+    ) -> Option<Arc<ShadedGrid>> {
         let mut g = self.grid.lock().unwrap_or_else(|e| e.into_inner());
-        let g = g.get_or_insert_with(make).clone();
+        let g = g
+            .get_or_insert_with(|| {
+                let g = make();
+                if g.is_some() {
+                    let live = counters.live_grids.fetch_add(1, Relaxed) + 1;
+                    counters.peak_grids.fetch_max(live, Relaxed);
+                }
+                g
+            })
+            .clone();
         self.shaded.store(true, Relaxed);
         if let Some(o) = g.as_ref().and_then(|g| g.overflow) {
             let _ = self.overflow.set(o);
@@ -134,9 +190,12 @@ impl GridSlot {
     }
 
     /// One overlapping bucket is done; the last one frees the grid.
-    fn release(&self) {
+    fn release(&self, counters: &Counters) {
         if self.remaining.fetch_sub(1, Relaxed) == 1 {
-            *self.grid.lock().unwrap_or_else(|e| e.into_inner()) = None;
+            let freed = self.grid.lock().unwrap_or_else(|e| e.into_inner()).take();
+            if freed.flatten().is_some() {
+                counters.live_grids.fetch_sub(1, Relaxed);
+            }
         }
     }
 }
@@ -169,7 +228,7 @@ pub(crate) fn render_bucket(
             continue;
         }
         let t = Instant::now();
-        let grid = grids[id].get(|| dice_and_shade(frame, shader, piece, counters));
+        let grid = grids[id].get(|| dice_and_shade(frame, shader, piece, counters), counters);
         shade_elapsed += ns(t);
         let Some(g) = grid.as_deref() else { continue };
         let hits = match &g.motion {
@@ -182,7 +241,7 @@ pub(crate) fn render_bucket(
         .sample_ns
         .fetch_add(ns(t_sample).saturating_sub(shade_elapsed), Relaxed);
     for &id in list {
-        grids[id].release();
+        grids[id].release(counters);
     }
     // Composite each sample front to back, then filter into pixels.
     let t = Instant::now();
@@ -209,6 +268,64 @@ pub(crate) fn render_bucket(
     shader.image(&mut block);
     counters.filter_ns.fetch_add(ns(t), Relaxed);
     block
+}
+
+/// Everything a bucket needs besides its pieces: renders one band of buckets at a time (the
+/// buckets of a band in parallel) into whole pixel rows.
+pub(crate) struct BandRenderer<'a> {
+    pub frame: &'a Frame,
+    pub shader: &'a dyn GridShader,
+    pub layout: &'a BucketLayout,
+    pub film: &'a Film,
+    pub setup: &'a SampleSetup,
+    pub lens: Option<&'a Lens>,
+    pub counters: &'a Counters,
+    pub aov: &'a AovLayout,
+    /// Called after each bucket with (buckets done, buckets to do).
+    pub progress: Option<&'a (dyn Fn(usize, usize) + Sync)>,
+    pub done: AtomicUsize,
+    pub total: AtomicUsize,
+}
+
+impl BandRenderer<'_> {
+    /// Band `by`'s buckets rendered from `lists` (one per bucket of the band, indices into
+    /// `pieces` and `grids`), printed into the band's rows.
+    pub fn render(
+        &self,
+        by: usize,
+        pieces: &[Piece],
+        lists: &[Vec<usize>],
+        grids: &[GridSlot],
+    ) -> crate::row_sink::PixelRows {
+        let (buckets, rows) = self.layout.band(by);
+        let first = buckets.start;
+        let blocks = buckets
+            .into_par_iter()
+            .map(|b| {
+                let block = render_bucket(
+                    self.frame,
+                    self.shader,
+                    pieces,
+                    grids,
+                    &lists[b - first],
+                    self.layout.rect(b),
+                    self.film,
+                    self.setup,
+                    self.lens,
+                    self.counters,
+                    self.aov,
+                );
+                let n = self.done.fetch_add(1, Relaxed) + 1;
+                if let Some(p) = self.progress {
+                    p(n, self.total.load(Relaxed));
+                }
+                block
+            })
+            .collect();
+        let [cx0, cx1, _, _] = self.layout.crop;
+        self.film
+            .print_rows([cx0, cx1], rows, blocks, self.aov.stride)
+    }
 }
 
 #[cfg(test)]

@@ -1,21 +1,22 @@
-//! The hider's stages for one frame, in order: refine ([`Hider::new`]: bound, cull, eye-split,
-//! split, `refine.rs`), bucket layout (`bucket.rs`), per bucket dice and shade (`dice.rs`,
+//! The hider's stages for one frame, in order: bucket layout (`bucket.rs`), refine (bound, cull,
+//! eye-split, split, `refine.rs`; lazily, each piece when the band of buckets its bound first
+//! touches comes, `lazy_bands.rs`), per bucket dice and shade (`dice.rs`,
 //! through the [`GridShader`]), sample (`sample_buffer.rs`, `motion.rs`), composite
 //! (`visible.rs`, `csg.rs`) and develop (`film.rs`), repeated for the buckets a displacement
 //! overflow reaches (`displacement_bound.rs`); each band of buckets is printed into exposed rows
 //! that go straight to a [`RowSink`] (`row_sink.rs`), so the film holds one band at a time.
 use crate::aov::AovLayout;
-use crate::bucket::{render_bucket, BucketLayout, GridSlot};
+use crate::bucket::{BandRenderer, BucketLayout, GridSlot};
 use crate::displacement_bound::render_until_bounded;
 use crate::film::Film;
+use crate::lazy_bands::{frame_moves, refine_frame, LazyBands, Overflowed, RefineReport};
 use crate::lens::Lens;
-use crate::refine::{Piece, PrimRef, RefineCounts, Refiner};
+use crate::refine::{Piece, Refiner};
 use crate::row_sink::{FrameCollector, RowSink};
 use crate::sample_buffer::SampleSetup;
 use crate::shader::GridShader;
 use crate::{Rendered, Stats};
 use illume_ri::{Diagnostic, Frame, Severity};
-use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
 use std::time::Instant;
 
@@ -32,6 +33,9 @@ pub(crate) struct Counters {
     pub(crate) filter_ns: AtomicU64,
     /// The largest AOV store a bucket held (bytes).
     pub(crate) aov_peak_bytes: AtomicU64,
+    /// Shaded grids held now, and the most held at once.
+    pub(crate) live_grids: AtomicU64,
+    pub(crate) peak_grids: AtomicU64,
 }
 
 /// Nanoseconds since `t`.
@@ -39,17 +43,17 @@ pub(crate) fn ns(t: Instant) -> u64 {
     t.elapsed().as_nanos() as u64
 }
 
-/// One frame's hider: built from the frame by the refine stage (bound, cull, eye-split, split:
-/// [`Hider::new`]), then run over the buckets with a shader ([`Hider::render`]).
+/// One frame's hider: set up from the frame ([`Hider::new`]), then run over the buckets with a
+/// shader ([`Hider::render`]), refining the primitives as the buckets reach them.
 pub struct Hider<'f> {
     frame: &'f Frame,
     refiner: Refiner<'f>,
-    pieces: Vec<Piece<'f>>,
     film: Film,
     /// Filter reach (pixels) around each piece's raster bound.
     margin: f32,
-    culled: u64,
-    split_ns: u64,
+    /// Where the refine stage's own warnings go in [`Hider::warnings`] (after the hider's
+    /// setup warnings, before the driver's), though refining happens while rendering.
+    refine_warnings_at: usize,
     /// The arbitrary output variables the displays ask for ([`Hider::set_aovs`]).
     aov: AovLayout,
     /// Problems found so far, in the order they arose. A driver appends its own (e.g. shader
@@ -58,8 +62,8 @@ pub struct Hider<'f> {
 }
 
 impl<'f> Hider<'f> {
-    /// The refine stage: every primitive of the frame bound, culled against the crop region
-    /// (grown by the filter's reach), split across the eye plane and split until diceable.
+    /// The hider for `frame`: its film, and the refiner that culls against the crop region
+    /// (grown by the filter's reach). Refining waits for [`Hider::render_to`].
     pub fn new(frame: &'f Frame) -> Hider<'f> {
         let opts = &frame.options;
         let cam = &frame.camera;
@@ -85,8 +89,6 @@ impl<'f> Hider<'f> {
                 message: "depth of field needs a perspective camera (ignored)".to_string(),
             });
         }
-        let [open, close] = opts.shutter;
-        let t0 = Instant::now();
         let refiner = Refiner {
             camera: cam,
             region,
@@ -94,64 +96,12 @@ impl<'f> Hider<'f> {
             grid_size: opts.grid_size.max(1) as usize,
             lens,
         };
-        let per_prim: Vec<(Vec<Piece>, RefineCounts)> = frame
-            .primitives
-            .par_iter()
-            .map(|fp| {
-                let mut out = Vec::new();
-                let mut counts = RefineCounts::default();
-                // A moving primitive keeps its keys unless the shutter is closed at (or before)
-                // its first key, where it is exactly its first key.
-                let later = match &fp.motion {
-                    Some(m) if close > open || m.times.first().is_some_and(|&t| open > t) => m
-                        .later
-                        .iter()
-                        .map(|k| PrimRef::Borrowed(k.as_ref()))
-                        .collect(),
-                    _ => Vec::new(),
-                };
-                refiner.refine(
-                    PrimRef::Borrowed(fp.primitive.as_ref()),
-                    later,
-                    &fp.attributes,
-                    0,
-                    0,
-                    &mut out,
-                    &mut counts,
-                );
-                (out, counts)
-            })
-            .collect();
-        let mut pieces: Vec<Piece> = Vec::new();
-        let mut culled = 0;
-        for (index, ((ps, counts), fp)) in per_prim.into_iter().zip(&frame.primitives).enumerate() {
-            culled += counts.culled;
-            if counts.eye_dropped > 0 {
-                warnings.push(Diagnostic {
-                    severity: Severity::Warning,
-                    kind: illume_ri::ErrorKind::Limit,
-                    span: fp.span.clone(),
-                    request: None,
-                    message: format!(
-                        "{} piece(s) still crossed the eye plane after {} eye splits (or split too deep) and were dropped",
-                        counts.eye_dropped, opts.eye_splits
-                    ),
-                });
-            }
-            pieces.extend(ps.into_iter().map(|mut p| {
-                p.prim_index = index;
-                p
-            }));
-        }
-        let split_ns = ns(t0);
         Hider {
             frame,
             refiner,
-            pieces,
             film,
             margin,
-            culled,
-            split_ns,
+            refine_warnings_at: warnings.len(),
             aov: AovLayout::default(),
             warnings,
         }
@@ -192,11 +142,9 @@ impl<'f> Hider<'f> {
         let Hider {
             frame,
             refiner,
-            mut pieces,
             film,
             margin,
-            culled,
-            split_ns,
+            refine_warnings_at,
             aov,
             mut warnings,
         } = self;
@@ -209,7 +157,7 @@ impl<'f> Hider<'f> {
             frame: frame.number.unwrap_or(0),
             jitter: opts.jitter,
             // Times and lens positions, only when something in the frame moves or a lens blurs.
-            blur: lens.is_some() || pieces.iter().any(|p| !p.later.is_empty()),
+            blur: lens.is_some() || frame_moves(frame),
             shutter: opts.shutter,
             near_far: [cam.near as f32, cam.far as f32],
             perspective: cam.is_perspective(),
@@ -217,57 +165,71 @@ impl<'f> Hider<'f> {
             eye_in_solids: crate::csg_eye::solids_containing_eye(frame),
         };
         let counters = Counters::default();
-        let done = AtomicUsize::new(0);
-        let total = AtomicUsize::new(0);
-        let [cx0, cx1, cy0, cy1] = cam.crop;
-        let overflow_warnings = render_until_bounded(
+        let bands = BandRenderer {
             frame,
-            &refiner,
-            &layout,
-            &mut pieces,
-            |pieces: &[Piece], lists: &[Vec<usize>], grids: &[GridSlot]| {
-                total.fetch_add(layout.bucket_count(), Relaxed);
-                sink.begin_pass();
-                for by in 0..layout.band_count() {
-                    let (buckets, rows) = layout.band(by);
-                    let blocks = buckets
-                        .into_par_iter()
-                        .map(|b| {
-                            let block = render_bucket(
-                                frame,
-                                shader,
-                                pieces,
-                                grids,
-                                &lists[b],
-                                layout.rect(b),
-                                &film,
-                                &setup,
-                                lens.as_ref(),
-                                &counters,
-                                &aov,
-                            );
-                            let n = done.fetch_add(1, Relaxed) + 1;
-                            if let Some(p) = progress {
-                                p(n, total.load(Relaxed));
-                            }
-                            block
-                        })
-                        .collect();
-                    sink.rows(film.print_rows([cx0, cx1], rows, blocks, aov.stride));
-                }
-            },
-        );
-        warnings.extend(overflow_warnings);
+            shader,
+            layout: &layout,
+            film: &film,
+            setup: &setup,
+            lens: lens.as_ref(),
+            counters: &counters,
+            aov: &aov,
+            progress,
+            done: AtomicUsize::new(0),
+            total: AtomicUsize::new(layout.bucket_count()),
+        };
+        sink.begin_pass();
+        let lazy = LazyBands::new(frame, &refiner, &layout).render(|pieces, lists, grids, by| {
+            sink.rows(bands.render(by, pieces, lists, grids));
+        });
+        // A displaced grid that left its bound needs the displacement-bound loop, which may
+        // grow any piece and render again: refine the whole frame up front and start over.
+        let report = lazy.unwrap_or_else(|Overflowed| {
+            // Progress counts the lazy pass's buckets as done; the loop adds its own passes.
+            bands.total.store(bands.done.load(Relaxed), Relaxed);
+            let mut report = RefineReport::default();
+            let mut pieces = refine_frame(frame, &refiner, &mut report);
+            warnings.extend(render_until_bounded(
+                frame,
+                &refiner,
+                &layout,
+                &mut pieces,
+                |pieces: &[Piece], lists: &[Vec<usize>], grids: &[GridSlot]| {
+                    bands.total.fetch_add(layout.bucket_count(), Relaxed);
+                    sink.begin_pass();
+                    for by in 0..layout.band_count() {
+                        let (buckets, _) = layout.band(by);
+                        sink.rows(bands.render(by, pieces, &lists[buckets], grids));
+                    }
+                },
+            ));
+            report
+        });
+        let mut dropped = dropped_warnings(frame, &report);
+        if report.late_pieces > 0 {
+            dropped.push(Diagnostic {
+                severity: Severity::Warning,
+                kind: illume_ri::ErrorKind::Limit,
+                span: illume_rib::Span::synthetic(),
+                request: None,
+                message: format!(
+                    "{} split piece(s) had a bound outside their parent's and may miss buckets rendered before them",
+                    report.late_pieces
+                ),
+            });
+        }
+        warnings.splice(refine_warnings_at..refine_warnings_at, dropped);
+        let [cx0, cx1, cy0, cy1] = cam.crop;
         let aov_image_bytes = ((cx1 - cx0) as u64) * ((cy1 - cy0) as u64) * aov.stride as u64 * 4;
         let stats = Stats {
             primitives: frame.primitives.len() as u64,
-            pieces: pieces.len() as u64,
+            pieces: report.pieces,
             grids: counters.grids.load(Relaxed),
             micropolygons: counters.micropolygons.load(Relaxed),
             samples: counters.samples.load(Relaxed),
-            culled_pieces: culled,
+            culled_pieces: report.culled,
             occluded_grids: counters.occluded.load(Relaxed),
-            split_seconds: split_ns as f64 * 1e-9,
+            split_seconds: report.split_ns as f64 * 1e-9,
             dice_seconds: counters.dice_ns.load(Relaxed) as f64 * 1e-9,
             shade_seconds: counters.shade_ns.load(Relaxed) as f64 * 1e-9,
             sample_seconds: counters.sample_ns.load(Relaxed) as f64 * 1e-9,
@@ -277,6 +239,8 @@ impl<'f> Hider<'f> {
             aov_stride: aov.stride as u64,
             aov_bucket_peak_bytes: counters.aov_peak_bytes.load(Relaxed),
             aov_image_bytes,
+            peak_live_pieces: report.peak_live_pieces,
+            peak_live_grids: counters.peak_grids.load(Relaxed),
         };
         Rendered {
             x0: cx0,
@@ -291,4 +255,23 @@ impl<'f> Hider<'f> {
             warnings,
         }
     }
+}
+
+/// One warning per primitive some of whose pieces were dropped at the eye plane (or at the
+/// split depth limit), in primitive order.
+fn dropped_warnings(frame: &Frame, report: &RefineReport) -> Vec<Diagnostic> {
+    report
+        .dropped
+        .iter()
+        .map(|(&i, &count)| Diagnostic {
+            severity: Severity::Warning,
+            kind: illume_ri::ErrorKind::Limit,
+            span: frame.primitives[i].span.clone(),
+            request: None,
+            message: format!(
+                "{count} piece(s) still crossed the eye plane after {} eye splits (or split too deep) and were dropped",
+                frame.options.eye_splits
+            ),
+        })
+        .collect()
 }

@@ -15,7 +15,9 @@ mod dice;
 mod displacement_bound;
 mod film;
 pub mod filter;
+mod flat_shading;
 mod hider;
+mod lazy_bands;
 mod lens;
 mod motion;
 mod refine;
@@ -58,6 +60,10 @@ pub struct Stats {
     pub aov_stride: u64,
     pub aov_bucket_peak_bytes: u64,
     pub aov_image_bytes: u64,
+    /// The most refine pieces (dice-ready or waiting for their band) and shaded grids the
+    /// hider held at once: bounded by about one band of buckets, not by the frame.
+    pub peak_live_pieces: u64,
+    pub peak_live_grids: u64,
 }
 
 /// The filtered, exposed float image of the crop window, plus per-pixel depth.

@@ -1,6 +1,9 @@
 //! Bound → cull → eye-split → split until diceable at the ShadingRate: turns the frame's
 //! primitives into dice-ready pieces with their dice rates. Decisions depend on the primitive
-//! and the camera only (not on buckets or threads), so every run dices identically.
+//! and the camera only (not on buckets or threads), so every run dices identically, whether a
+//! primitive is refined in one go or lazily, a piece at a time as the buckets reach it
+//! (`lazy_bands.rs`): a piece may stop early and wait ([`Item`]) for the band of buckets its
+//! bound first touches, and refining it then continues exactly where it stopped.
 use glam::{DVec3, Vec3};
 use illume_geom::{Bound, Primitive};
 use illume_ri::{Attributes, Camera};
@@ -40,6 +43,80 @@ pub(crate) struct Piece<'a> {
     pub zmin: f32,
     /// Index of the frame primitive this piece came from.
     pub prim_index: usize,
+    /// The child index taken at each split from the primitive down to this piece. Pieces in
+    /// (`prim_index`, `path`) order are in the order a depth-first refine of the whole frame
+    /// makes them, the order that breaks ties between samples at equal depth.
+    pub path: Box<[u32]>,
+}
+
+impl Piece<'_> {
+    /// The frame-wide refine order of two pieces (see [`Piece::path`]).
+    pub fn refine_order(&self, other: &Piece) -> std::cmp::Ordering {
+        (self.prim_index, &self.path).cmp(&(other.prim_index, &other.path))
+    }
+}
+
+/// A primitive, or a piece of one, still to refine: where a lazy refine stopped.
+pub(crate) struct Item<'a> {
+    pub prim: PrimRef<'a>,
+    /// The later motion keys, split like `prim`.
+    pub later: Vec<PrimRef<'a>>,
+    pub prim_index: usize,
+    pub eye_splits: u32,
+    pub depth: u32,
+    /// See [`Piece::path`].
+    pub path: Vec<u32>,
+}
+
+impl<'a> Item<'a> {
+    /// A frame primitive, not refined at all yet.
+    pub fn primitive(prim: PrimRef<'a>, later: Vec<PrimRef<'a>>, prim_index: usize) -> Item<'a> {
+        Item {
+            prim,
+            later,
+            prim_index,
+            eye_splits: 0,
+            depth: 0,
+            path: Vec::new(),
+        }
+    }
+
+    /// The children of one split, each one level deeper.
+    fn split(self, eye_split: bool) -> impl Iterator<Item = Item<'a>> {
+        let Item {
+            prim,
+            later,
+            prim_index,
+            eye_splits,
+            depth,
+            path,
+        } = self;
+        let eye_splits = eye_splits + u32::from(eye_split);
+        split_keys(&prim, &later)
+            .into_iter()
+            .enumerate()
+            .map(move |(i, (prim, later))| {
+                let mut path = path.clone();
+                path.push(i as u32);
+                Item {
+                    prim,
+                    later,
+                    prim_index,
+                    eye_splits,
+                    depth: depth + 1,
+                    path,
+                }
+            })
+    }
+}
+
+/// What a refine produced: dice-ready pieces, pieces that wait for a later band of buckets
+/// (with the band), and the counts of dropped pieces.
+#[derive(Default)]
+pub(crate) struct Refined<'a> {
+    pub pieces: Vec<Piece<'a>>,
+    pub deferred: Vec<(usize, Item<'a>)>,
+    pub counts: RefineCounts,
 }
 
 pub(crate) struct Refiner<'c> {
@@ -130,21 +207,20 @@ impl Refiner<'_> {
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// Refines `item` depth first into `out`. Once the item no longer crosses the eye plane,
+    /// `defer` sees its raster bound and may name a band of buckets to wait for instead.
     pub fn refine<'a>(
         &self,
-        prim: PrimRef<'a>,
-        later: Vec<PrimRef<'a>>,
+        item: Item<'a>,
         attrs: &Arc<Attributes>,
-        eye_splits: u32,
-        depth: u32,
-        out: &mut Vec<Piece<'a>>,
-        counts: &mut RefineCounts,
+        defer: &dyn Fn(&[f32; 4]) -> Option<usize>,
+        out: &mut Refined<'a>,
     ) {
+        let counts = &mut out.counts;
         // Vertices move linearly between keys, so the box around every key's bound holds the
         // piece over the whole shutter interval.
-        let mut b = prim.get().bound();
-        for k in &later {
+        let mut b = item.prim.get().bound();
+        for k in &item.later {
             b = b.union(k.get().bound());
         }
         let b = b.padded(attrs.displacement_bound);
@@ -152,28 +228,32 @@ impl Refiner<'_> {
             counts.culled += 1;
             return;
         }
-        if depth >= MAX_SPLIT_DEPTH {
+        if item.depth >= MAX_SPLIT_DEPTH {
             counts.eye_dropped += 1;
             return;
         }
         let crosses_eye = self.camera.is_perspective() && f64::from(b.min.z) < self.eye_z();
         if crosses_eye {
-            if eye_splits >= self.eye_splits {
+            if item.eye_splits >= self.eye_splits {
                 counts.eye_dropped += 1;
                 return;
             }
-            for (child, keys) in split_keys(&prim, &later) {
-                self.refine(child, keys, attrs, eye_splits + 1, depth + 1, out, counts);
-            }
-            return;
-        }
-        if !prim.get().diceable() {
-            for (child, keys) in split_keys(&prim, &later) {
-                self.refine(child, keys, attrs, eye_splits, depth + 1, out, counts);
+            for child in item.split(true) {
+                self.refine(child, attrs, defer, out);
             }
             return;
         }
         let raster = self.raster_bound(&b);
+        if let Some(band) = defer(&raster) {
+            out.deferred.push((band, item));
+            return;
+        }
+        if !item.prim.get().diceable() {
+            for child in item.split(false) {
+                self.refine(child, attrs, defer, out);
+            }
+            return;
+        }
         if raster[1] < self.region[0]
             || raster[0] > self.region[1]
             || raster[3] < self.region[2]
@@ -182,22 +262,23 @@ impl Refiner<'_> {
             counts.culled += 1;
             return;
         }
-        let (nu, nv) = self.dice_rates(prim.get(), attrs);
-        if (nu - 1) * (nv - 1) > self.grid_size && depth + 1 < MAX_SPLIT_DEPTH {
-            for (child, keys) in split_keys(&prim, &later) {
-                self.refine(child, keys, attrs, eye_splits, depth + 1, out, counts);
+        let (nu, nv) = self.dice_rates(item.prim.get(), attrs);
+        if (nu - 1) * (nv - 1) > self.grid_size && item.depth + 1 < MAX_SPLIT_DEPTH {
+            for child in item.split(false) {
+                self.refine(child, attrs, defer, out);
             }
             return;
         }
-        out.push(Piece {
-            prim,
-            later,
+        out.pieces.push(Piece {
+            prim: item.prim,
+            later: item.later,
             attrs: attrs.clone(),
             nu,
             nv,
             raster,
             zmin: b.min.z,
-            prim_index: 0,
+            prim_index: item.prim_index,
+            path: item.path.into_boxed_slice(),
         });
     }
 

@@ -2,6 +2,8 @@
 //! `ArchiveBegin` record requests, `ObjectInstance` and `ReadArchive` replay them or read a
 //! file. `ReadArchive` is textual inclusion; instances and procedurals run inside an attribute
 //! block that closes whatever they left open (see [`Scope`]).
+use crate::frame::FramePrimitive;
+use crate::instance::{InstancePrimitive, SharedObject};
 use crate::state::{BlockKind, Ri};
 use illume_rib::{Handle, Request, Span, Spanned};
 use std::io::Read;
@@ -46,7 +48,12 @@ impl Ri {
                 };
                 match rec {
                     Recording::Object(h) => {
-                        self.objects.insert(h, Arc::new(reqs));
+                        let reqs = Arc::new(reqs);
+                        match SharedObject::analyse(self, reqs.clone()) {
+                            Some(shared) => self.shared_objects.insert(h.clone(), Arc::new(shared)),
+                            None => self.shared_objects.remove(&h),
+                        };
+                        self.objects.insert(h, reqs);
                     }
                     Recording::Archive(n) => {
                         self.archives.insert(n, Arc::new(reqs));
@@ -91,7 +98,44 @@ impl Ri {
             );
             return;
         };
-        self.replay(&reqs, span, "ObjectInstance", Scope::Block);
+        if !self.share_instance(h, span) {
+            self.replay(&reqs, span, "ObjectInstance", Scope::Block);
+        }
+    }
+
+    /// Adds an instance of a shared object as one primitive (see `instance.rs`); false when it
+    /// must be replayed: outside an active world, in motion, in a solid, under `DetailRange`,
+    /// at the nesting limit or past a vertex limit (replaying reports what applies).
+    fn share_instance(&mut self, h: &Handle, span: &Span) -> bool {
+        let Some(object) = self.shared_objects.get(h).cloned() else {
+            return false;
+        };
+        let plain = self.in_world()
+            && self.world_active
+            && self.motion.is_none()
+            && self.ctm_motion.is_none()
+            && self.open_solids.is_empty()
+            && self.attributes.detail_range.is_none()
+            && self.nesting < self.options.limits.nesting as usize
+            && object.vertices <= self.options.limits.vertices;
+        if !plain {
+            return false;
+        }
+        // The instance itself is what the frame keeps; its primitives exist only while the
+        // hider works on the buckets it covers.
+        if self.charge_memory(crate::memory::PER_PRIMITIVE, span, "ObjectInstance") {
+            let primitive =
+                InstancePrimitive::new(object.clone(), self.ctm, self.attributes.clone());
+            self.primitives.push(FramePrimitive {
+                primitive: Box::new(primitive),
+                attributes: self.attributes.clone(),
+                span: span.clone(),
+                solid: None,
+                motion: None,
+                mirrored: object.mirrored(&self.ctm),
+            });
+        }
+        true
     }
 
     pub(crate) fn replay(

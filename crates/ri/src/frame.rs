@@ -84,6 +84,8 @@ impl Ri {
             _ => true,
         };
         self.primitives.clear();
+        self.frame_bytes = 0;
+        self.memory_exceeded = false;
     }
 
     pub(crate) fn world_end(&mut self) {

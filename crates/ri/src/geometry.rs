@@ -2,11 +2,16 @@
 //! transformation (at every key when it moves), culled by `DetailRange`, and queued with the
 //! attributes they were made under for the frame.
 use crate::frame::FramePrimitive;
+use crate::instance::SharedObject;
 use crate::motion::MotionKeys;
 use crate::state::Ri;
 use glam::{DMat4, DVec3};
 use illume_geom::{BuildContext, GeomError};
 use illume_rib::{Request, Span};
+
+/// Requests that build into this many primitives or more (mesh faces) are kept as their
+/// request until the hider needs them: their faces take about 25 times the request's numbers.
+const DEFER_AT: usize = 16;
 
 impl Ri {
     pub(crate) fn geometry(&mut self, req: &Request, span: &Span) {
@@ -19,7 +24,7 @@ impl Ri {
             );
             return;
         }
-        if !self.world_active || !self.detail_visible() {
+        if !self.world_active || self.memory_exceeded || !self.detail_visible() {
             return;
         }
         if !crate::options::check_vertices(&self.options.limits, req, span, &mut self.diagnostics) {
@@ -32,6 +37,10 @@ impl Ri {
                 _ => self.ctm,
             };
             let prims = self.build_geometry(req, span, ctm).unwrap_or_default();
+            let bytes = crate::memory::request_bytes(req, prims.len());
+            if !self.charge_memory(bytes, span, req.name()) {
+                return;
+            }
             let m = self.motion.as_mut().expect("checked above");
             m.first
                 .get_or_insert((span.clone(), req.name().to_string()));
@@ -41,6 +50,14 @@ impl Ri {
         match self.ctm_motion.clone() {
             None => {
                 let prims = self.build_geometry(req, span, self.ctm).unwrap_or_default();
+                let bytes = crate::memory::request_bytes(req, prims.len());
+                if !self.charge_memory(bytes, span, req.name()) {
+                    return;
+                }
+                if prims.len() >= DEFER_AT && self.open_solids.is_empty() {
+                    self.defer(req, span, &prims);
+                    return;
+                }
                 self.push_primitives(vec![0.0], vec![prims], span, req.name());
             }
             Some(mm) => {
@@ -52,9 +69,34 @@ impl Ri {
                         None => return,
                     }
                 }
+                let n: usize = keys.iter().map(Vec::len).sum();
+                if !self.charge_memory(crate::memory::request_bytes(req, n), span, req.name()) {
+                    return;
+                }
                 self.push_primitives(mm.times.clone(), keys, span, req.name());
             }
         }
+    }
+
+    /// Keeps a request that built into many primitives as one deferred primitive (see
+    /// [`SharedObject::deferred`]); its faces are built again, identically, when the hider
+    /// splits it.
+    fn defer(&mut self, req: &Request, span: &Span, built: &[Box<dyn illume_geom::Primitive>]) {
+        let request = illume_rib::Spanned {
+            span: span.clone(),
+            value: req.clone(),
+        };
+        let Some(p) = SharedObject::deferred(self, request, self.ctm, built) else {
+            return;
+        };
+        self.primitives.push(FramePrimitive {
+            primitive: Box::new(p),
+            attributes: self.attributes.clone(),
+            span: span.clone(),
+            solid: None,
+            motion: None,
+            mirrored: self.current_is_rh(),
+        });
     }
 
     /// Builds a geometry request under `camera_from_object`; `None` (reported) when it fails.

@@ -15,8 +15,10 @@ pub mod declarations;
 pub mod diagnostic;
 pub mod frame;
 mod geometry;
+mod instance;
 mod lights;
 mod make_texture;
+pub mod memory;
 pub mod motion;
 pub mod options;
 pub mod paramlist;
@@ -30,6 +32,7 @@ pub use camera::Camera;
 pub use declarations::Declarations;
 pub use diagnostic::{Diagnostic, Diagnostics, ErrorKind, Severity};
 pub use frame::{Frame, FramePrimitive};
+pub use instance::InstancePrimitive;
 pub use motion::{MotionKeys, MovingTransform};
 pub use options::{
     declared_vertices, DepthFilter, DisplayChannel, DisplaySpec, Limits, Options, Projection,

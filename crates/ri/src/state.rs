@@ -85,6 +85,10 @@ pub struct Ri {
     pub(crate) world_active: bool,
     pub(crate) recording: Option<(Recording, Span, Vec<Spanned<Request>>)>,
     pub(crate) objects: HashMap<Handle, Arc<Vec<Spanned<Request>>>>,
+    /// The objects whose instances share one definition (see `instance.rs`).
+    pub(crate) shared_objects: HashMap<Handle, Arc<crate::instance::SharedObject>>,
+    /// `declarations` as the shared objects and deferred meshes keep them (until a `Declare`).
+    pub(crate) declarations_shared: Option<Arc<Declarations>>,
     pub(crate) archives: HashMap<String, Arc<Vec<Spanned<Request>>>>,
     pub(crate) frames: Vec<Frame>,
     pub(crate) diagnostics: Diagnostics,
@@ -93,6 +97,9 @@ pub struct Ri {
     pub(crate) crop_override: Option<[f32; 4]>,
     pub(crate) frame_range: Option<(i32, i32)>,
     pub(crate) nesting: usize,
+    /// This world's memory estimate so far, and whether it went over the limit (`memory.rs`).
+    pub(crate) frame_bytes: u64,
+    pub(crate) memory_exceeded: bool,
 }
 
 impl Default for Ri {
@@ -123,6 +130,8 @@ impl Ri {
             world_active: true,
             recording: None,
             objects: HashMap::new(),
+            shared_objects: HashMap::new(),
+            declarations_shared: None,
             archives: HashMap::new(),
             frames: Vec::new(),
             diagnostics: Diagnostics::default(),
@@ -131,6 +140,8 @@ impl Ri {
             crop_override: None,
             frame_range: None,
             nesting: 0,
+            frame_bytes: 0,
+            memory_exceeded: false,
         }
     }
 
@@ -260,7 +271,10 @@ impl Ri {
                 name: n,
                 declaration,
             } => match Declaration::parse(&declaration) {
-                Ok(d) => self.declarations.declare(&n, d),
+                Ok(d) => {
+                    self.declarations.declare(&n, d);
+                    self.declarations_shared = None;
+                }
                 Err(e) => self.diagnostics.error(&span, &name, format!("{n}: {e}")),
             },
             FrameBegin(n) => {

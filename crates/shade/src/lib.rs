@@ -70,7 +70,7 @@ pub use noise::noise;
 pub use occlusion::{stratified_sample, Occlusion};
 pub use parameters::ParamValue;
 pub use renderstate::{rendererinfo, InfoValue, RenderInfo};
-pub use shadingenv::{ShadingEnv, SpecularModel, WarnOnce, WarningSink};
+pub use shadingenv::{Located, ShadingEnv, SourceAt, SpecularModel, WarnOnce, WarningSink};
 pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};

@@ -40,6 +40,17 @@ impl SpecularModel {
     }
 }
 
+/// Where in a shader's source a run-time problem arose: the statement being run.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct SourceAt {
+    pub file: String,
+    pub line: u32,
+    pub col: u32,
+}
+
+/// A message with the shader source position it is about, when there is one.
+pub type Located = (Option<SourceAt>, String);
+
 /// Where shading warnings go (missing maps, unknown spaces…). Implementations de-duplicate.
 pub trait WarningSink: Send + Sync {
     fn warn(&self, message: &str);
@@ -48,13 +59,24 @@ pub trait WarningSink: Send + Sync {
     fn error(&self, message: &str) {
         self.warn(message)
     }
+    /// [`WarningSink::warn`] about a statement of a shader's source (SL run-time problems), so
+    /// the report can name its `file:line:col`. Sinks that keep no positions just warn.
+    fn warn_at(&self, at: Option<&SourceAt>, message: &str) {
+        let _ = at;
+        self.warn(message)
+    }
+    /// [`WarningSink::error`] about a statement of a shader's source.
+    fn error_at(&self, at: Option<&SourceAt>, message: &str) {
+        let _ = at;
+        self.error(message)
+    }
 }
 
 /// A [`WarningSink`] that keeps each distinct message once, in order of first occurrence.
 #[derive(Debug, Default)]
 pub struct WarnOnce {
-    seen: Mutex<(HashSet<String>, Vec<String>)>,
-    errors: Mutex<Vec<String>>,
+    seen: Mutex<(HashSet<Located>, Vec<Located>)>,
+    errors: Mutex<Vec<Located>>,
 }
 
 impl WarnOnce {
@@ -64,28 +86,48 @@ impl WarnOnce {
 
     /// The distinct messages so far, first occurrence first.
     pub fn messages(&self) -> Vec<String> {
-        self.seen.lock().map(|g| g.1.clone()).unwrap_or_default()
+        self.located_messages().into_iter().map(|m| m.1).collect()
     }
 
     /// The distinct errors so far (see [`WarningSink::error`]), first occurrence first.
     pub fn errors(&self) -> Vec<String> {
+        self.located_errors().into_iter().map(|m| m.1).collect()
+    }
+
+    /// [`WarnOnce::messages`] with the shader source position of each, where known.
+    pub fn located_messages(&self) -> Vec<Located> {
+        self.seen.lock().map(|g| g.1.clone()).unwrap_or_default()
+    }
+
+    /// [`WarnOnce::errors`] with the shader source position of each, where known.
+    pub fn located_errors(&self) -> Vec<Located> {
         self.errors.lock().map(|g| g.clone()).unwrap_or_default()
     }
 }
 
 impl WarningSink for WarnOnce {
     fn warn(&self, message: &str) {
+        self.warn_at(None, message)
+    }
+
+    fn error(&self, message: &str) {
+        self.error_at(None, message)
+    }
+
+    fn warn_at(&self, at: Option<&SourceAt>, message: &str) {
+        let m = (at.cloned(), message.to_string());
         if let Ok(mut g) = self.seen.lock() {
-            if g.0.insert(message.to_string()) {
-                g.1.push(message.to_string());
+            if g.0.insert(m.clone()) {
+                g.1.push(m);
             }
         }
     }
 
-    fn error(&self, message: &str) {
+    fn error_at(&self, at: Option<&SourceAt>, message: &str) {
+        let m = (at.cloned(), message.to_string());
         if let Ok(mut g) = self.errors.lock() {
-            if !g.iter().any(|e| e == message) {
-                g.push(message.to_string());
+            if !g.contains(&m) {
+                g.push(m);
             }
         }
     }
@@ -174,6 +216,20 @@ impl<'a> ShadingEnv<'a> {
     pub fn error(&self, message: &str) {
         if let Some(w) = self.warnings {
             w.error(message);
+        }
+    }
+
+    /// [`ShadingEnv::warn`] about a statement of a shader's source.
+    pub fn warn_at(&self, at: Option<&SourceAt>, message: &str) {
+        if let Some(w) = self.warnings {
+            w.warn_at(at, message);
+        }
+    }
+
+    /// [`ShadingEnv::error`] about a statement of a shader's source.
+    pub fn error_at(&self, at: Option<&SourceAt>, message: &str) {
+        if let Some(w) = self.warnings {
+            w.error_at(at, message);
         }
     }
 

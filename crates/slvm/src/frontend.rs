@@ -15,7 +15,7 @@ pub fn compile_path(path: &Path, include_dirs: &[PathBuf]) -> Result<Program, St
     if compiled.has_errors() {
         return Err(compiled.render_diagnostics().trim_end().to_string());
     }
-    Ok(compiled.program)
+    Ok(with_files(compiled))
 }
 
 /// Compiles source text (`name` is used in diagnostics), for tests and benchmarks.
@@ -24,5 +24,12 @@ pub fn compile_source(name: &str, text: &str) -> Result<Program, String> {
     if compiled.has_errors() {
         return Err(compiled.render_diagnostics().trim_end().to_string());
     }
-    Ok(compiled.program)
+    Ok(with_files(compiled))
+}
+
+/// The program with the paths of the files it was read from (for run-time diagnostics).
+fn with_files(compiled: illume_sl::Compiled) -> Program {
+    let mut program = compiled.program;
+    program.files = compiled.sources.files.into_iter().map(|f| f.path).collect();
+    program
 }

@@ -145,11 +145,21 @@ impl SlInstance {
     }
 
     fn report(exec: &Exec, env: &ShadingEnv, name: &str) {
-        for p in &exec.problems {
-            env.warn(&format!("shader `{name}`: {p}"));
+        // The statement's file:line:col in the shader's source, for the report's position.
+        let at = |loc: &Option<illume_sl::span::Loc>| {
+            let loc = (*loc)?;
+            let file = exec.prog.files.get(loc.file.0 as usize)?;
+            Some(illume_shade::SourceAt {
+                file: file.display().to_string(),
+                line: loc.line,
+                col: loc.col,
+            })
+        };
+        for (loc, p) in &exec.problems {
+            env.warn_at(at(loc).as_ref(), &format!("shader `{name}`: {p}"));
         }
-        for e in &exec.errors {
-            env.error(&format!("shader `{name}`: {e}"));
+        for (loc, e) in &exec.errors {
+            env.error_at(at(loc).as_ref(), &format!("shader `{name}`: {e}"));
         }
     }
 

@@ -16,6 +16,7 @@
 //! | `shadingrate` | float | 0.01 | smallest `ShadingRate` (100 shading points per pixel) |
 //! | `vertices` | int | 2²⁶ | most vertices (or faces, curves, control points) of one primitive |
 //! | `nesting` | int | 64 | deepest `ReadArchive` / `ObjectInstance` / procedural nesting (at most 256) |
+//! | `memory` | MB | half the machine's RAM (4096 where unknown) | the frame's geometry estimate plus `texturememory` |
 //!
 //! The limits apply to the requests that follow the `Option`: set them before `Format`.
 
@@ -31,6 +32,9 @@ pub struct Limits {
     pub min_shading_rate: f32,
     pub vertices: u64,
     pub nesting: u32,
+    /// Bytes the frame's geometry (estimated by [`crate::options::request_bytes`]) and the
+    /// texture cache (`texturememory`) may take together.
+    pub memory: u64,
 }
 
 impl Default for Limits {
@@ -42,6 +46,7 @@ impl Default for Limits {
             min_shading_rate: 0.01,
             vertices: 1 << 26,
             nesting: 64,
+            memory: default_memory(),
         }
     }
 }
@@ -59,7 +64,13 @@ impl Limits {
     ) -> bool {
         let known = matches!(
             name,
-            "resolution" | "pixels" | "pixelsamples" | "shadingrate" | "vertices" | "nesting"
+            "resolution"
+                | "pixels"
+                | "pixelsamples"
+                | "shadingrate"
+                | "vertices"
+                | "nesting"
+                | "memory"
         );
         if !known {
             return false;
@@ -79,6 +90,7 @@ impl Limits {
             "pixelsamples" => self.pixel_samples = count.max(1),
             "shadingrate" => self.min_shading_rate = v,
             "vertices" => self.vertices = (v as f64).min(u64::MAX as f64) as u64,
+            "memory" => self.memory = (f64::from(v) * MB as f64).min(u64::MAX as f64) as u64,
             // Each level is a few stack frames of the request loop: 256 stays far from the
             // main thread's 8 MB stack.
             _ => self.nesting = count.clamp(1, 256),
@@ -99,6 +111,22 @@ impl Limits {
         let fit = |v: f64| ((v * scale).floor() as u32).max(1);
         (fit(x), fit(y))
     }
+}
+
+const MB: u64 = 1 << 20;
+
+/// The default `memory` limit: half the physical memory (`MemTotal` of `/proc/meminfo`), or
+/// 4 GB where that can not be read. Half, because the estimate counts what the RI state keeps
+/// for the frame, not what the hider adds while rendering it (pieces, grids, the sample
+/// buffer), and the point of the limit is that an error, not the kernel's OOM killer, ends a
+/// scene that can not fit. A fixed value would be too small for a big machine's scenes or too
+/// big for a small machine's RAM.
+fn default_memory() -> u64 {
+    let total_kb = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {
+        let line = t.lines().find(|l| l.starts_with("MemTotal:"))?;
+        line.split_whitespace().nth(1)?.parse::<u64>().ok()
+    });
+    total_kb.map_or(4096 * MB, |kb| kb * 1024 / 2)
 }
 
 /// How many vertices a geometry request asks for, from its counts (not its data, which may be

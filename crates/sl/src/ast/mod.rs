@@ -70,6 +70,9 @@ pub struct Program {
     pub functions: Vec<FunctionDef>,
     /// The top-level definitions in source order (functions must be defined before use).
     pub items: Vec<Item>,
+    /// The path of each file read, indexed by [`crate::span::FileId`] (the compiler's
+    /// `SourceMap`, without the text), so run-time problems can name `file:line:col`.
+    pub files: Vec<std::path::PathBuf>,
 }
 
 impl Program {

@@ -22,6 +22,7 @@ use crate::value::{Mask, Slot, Value};
 use glam::{DMat4, Vec3};
 use illume_shade::{ShadingEnv, ShadingGrid};
 use illume_sl::ast::{Global, Owner, Program, ShaderId};
+use illume_sl::span::Loc;
 use illume_sl::types::{BaseType, Type};
 use std::cell::OnceCell;
 use std::sync::Arc;
@@ -104,11 +105,14 @@ pub struct Exec<'a> {
     pub(crate) emission: Emission,
     /// Counts `random()` call sites evaluated, so two calls differ.
     pub(crate) random_site: u32,
-    /// Errors met while running (unknown built-ins, bad spaces), reported once by the caller.
-    pub(crate) problems: Vec<String>,
+    /// Errors met while running (unknown built-ins, bad spaces), reported once by the caller,
+    /// each with the statement it arose in.
+    pub(crate) problems: Vec<(Option<Loc>, String)>,
     /// Runs that could not complete (a loop stopped by the iteration limits): errors, not
     /// warnings, since the shaded result is wrong.
-    pub(crate) errors: Vec<String>,
+    pub(crate) errors: Vec<(Option<Loc>, String)>,
+    /// The statement being run (set by `exec_stmt`), for the position of `problems`.
+    pub(crate) at: Option<Loc>,
     /// Loop iterations taken so far in this run, against [`MAX_TOTAL_ITERATIONS`].
     loop_iterations: u64,
     /// Set when a loop hit a limit: every enclosing loop stops too, so a runaway nest costs at
@@ -143,6 +147,7 @@ impl<'a> Exec<'a> {
             random_site: 0,
             problems: Vec::new(),
             errors: Vec::new(),
+            at: None,
             loop_iterations: 0,
             runaway: false,
             messages: Messages::default(),
@@ -151,8 +156,9 @@ impl<'a> Exec<'a> {
     }
 
     pub(crate) fn problem(&mut self, message: String) {
-        if !self.problems.contains(&message) {
-            self.problems.push(message);
+        let p = (self.at, message);
+        if !self.problems.contains(&p) {
+            self.problems.push(p);
         }
     }
 

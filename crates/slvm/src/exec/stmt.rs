@@ -38,6 +38,7 @@ impl Exec<'_> {
     }
 
     pub(super) fn exec_stmt(&mut self, stmt: &Stmt, mask: &Mask) {
+        self.at = Some(stmt.span.loc);
         match &stmt.kind {
             StmtKind::Decl(d) => {
                 for decl in &d.vars {
@@ -189,6 +190,8 @@ impl Exec<'_> {
         // hitting one is an error naming the shader and the loop's line (see `report`).
         let mut iterations = 0u32;
         let line = cond.or(step).map(|e| (e.span.loc.line, e.span.loc.col));
+        // The loop statement itself (the body's statements move `at` on).
+        let loop_at = self.at;
         loop {
             iterations += 1;
             self.loop_iterations += 1;
@@ -205,8 +208,9 @@ impl Exec<'_> {
                         iterations - 1,
                         self.loop_iterations - 1
                     );
-                    if !self.errors.contains(&message) {
-                        self.errors.push(message);
+                    let e = (loop_at, message);
+                    if !self.errors.contains(&e) {
+                        self.errors.push(e);
                     }
                 }
                 self.runaway = true;
