@@ -28,9 +28,20 @@ pub struct PeerScene {
 /// "undeclared token" and drops the whole request; an inline declaration means the same to
 /// both renderers.
 const DECLARE_SHADOWNAME: (&str, &str) = ("\"shadowname\"", "\"string shadowname\"");
-/// Aqsis's `shadowspot` has no `bias` (it takes `Option "shadow" "bias"`); declared inline, the
-/// peer ignores it with a warning.
-const DECLARE_BIAS: (&str, &str) = ("\"bias\" [", "\"float bias\" [");
+/// The other `shadowspot` parameters Aqsis 1.8.4 does not declare. Its `shadowspot` has no
+/// `bias` (it takes `Option "shadow" "bias"`): declared inline, the peer ignores it with a
+/// warning.
+const DECLARE_SHADOW_FLOATS: [(&str, &str); 3] = [
+    ("\"samples\" [", "\"float samples\" ["),
+    ("\"blur\" [", "\"float blur\" ["),
+    ("\"bias\" [", "\"float bias\" ["),
+];
+const DECLARE_SHADOW: [(&str, &str); 4] = [
+    DECLARE_SHADOWNAME,
+    DECLARE_SHADOW_FLOATS[0],
+    DECLARE_SHADOW_FLOATS[1],
+    DECLARE_SHADOW_FLOATS[2],
+];
 
 /// The 14-scene set.
 pub const SCENES: [PeerScene; 14] = [
@@ -58,14 +69,14 @@ pub const SCENES: [PeerScene; 14] = [
     PeerScene {
         name: "shadow",
         file: "pipelines/shadow/shadow_single.rib",
-        edits: &[DECLARE_SHADOWNAME, DECLARE_BIAS],
-        note: "depth pass, MakeShadow, beauty; `shadowname`, `bias` declared inline",
+        edits: &DECLARE_SHADOW,
+        note: "depth pass, MakeShadow, beauty; `shadowname`, `samples`, `blur`, `bias` declared inline",
     },
     PeerScene {
         name: "turntable",
         file: "pipelines/farm/turntable.rib",
-        edits: &[DECLARE_SHADOWNAME, DECLARE_BIAS],
-        note: "3 frames of depth pass, MakeShadow, beauty; `shadowname`, `bias` declared inline",
+        edits: &DECLARE_SHADOW,
+        note: "3 frames of depth pass, MakeShadow, beauty; `shadowname`, `samples`, `blur`, `bias` declared inline",
     },
     PeerScene {
         name: "flatmirror",
