@@ -31,7 +31,7 @@ pub struct Usage {
 }
 
 /// The wrapper's line for these numbers.
-pub fn mark_line(exit_code: i32, max_rss_kb: i64, user: f64, sys: f64) -> String {
+pub fn mark_line(exit_code: i32, max_rss_kb: f64, user: f64, sys: f64) -> String {
     format!("{MARK} {exit_code} {max_rss_kb} {user:.6} {sys:.6}")
 }
 
@@ -68,26 +68,27 @@ pub fn wrapper_main(args: &[String]) -> ExitCode {
     ExitCode::from(u8::try_from(code).unwrap_or(2))
 }
 
-/// Peak RSS (kB, Linux's unit) and user, system seconds of the reaped children.
+/// Peak RSS (kB, Linux's unit) and user, system seconds of the reaped children (NaN when
+/// unknown).
 #[cfg(unix)]
-fn children_usage() -> (i64, f64, f64) {
+fn children_usage() -> (f64, f64, f64) {
     use nix::sys::resource::{getrusage, UsageWho};
     match getrusage(UsageWho::RUSAGE_CHILDREN) {
         Ok(u) => {
             let secs = |t: nix::sys::time::TimeVal| t.tv_sec() as f64 + t.tv_usec() as f64 * 1e-6;
             (
-                i64::from(u.max_rss()),
+                u.max_rss() as f64,
                 secs(u.user_time()),
                 secs(u.system_time()),
             )
         }
-        Err(_) => (0, f64::NAN, f64::NAN),
+        Err(_) => (f64::NAN, f64::NAN, f64::NAN),
     }
 }
 
 #[cfg(not(unix))]
-fn children_usage() -> (i64, f64, f64) {
-    (0, f64::NAN, f64::NAN)
+fn children_usage() -> (f64, f64, f64) {
+    (f64::NAN, f64::NAN, f64::NAN)
 }
 
 /// Runs `program args` in `dir` under the wrapper (this executable) and measures it.
@@ -128,7 +129,7 @@ mod tests {
 
     #[test]
     fn the_mark_line_parses_back_and_keeps_the_commands_own_stderr() {
-        let text = format!("warning: x\n{}\n", mark_line(1, 204_800, 1.25, 0.125));
+        let text = format!("warning: x\n{}\n", mark_line(1, 204_800.0, 1.25, 0.125));
         let (own, exit, mb, cpu) = parse_mark(&text).unwrap();
         assert_eq!(own, "warning: x\n");
         assert_eq!(exit, 1);

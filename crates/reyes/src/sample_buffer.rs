@@ -183,9 +183,9 @@ impl SampleBuffer {
             lo = [lo[0].min(p.x), lo[1].min(p.y)];
             hi = [hi[0].max(p.x), hi[1].max(p.y)];
         }
-        (lo[0] - grow).floor() as i32 - sx0 <= sw as i32 - 1
+        (lo[0] - grow).floor() as i32 - sx0 < sw as i32
             && (hi[0] + grow).floor() as i32 - sx0 >= 0
-            && (lo[1] - grow).floor() as i32 - sy0 <= sh as i32 - 1
+            && (lo[1] - grow).floor() as i32 - sy0 < sh as i32
             && (hi[1] + grow).floor() as i32 - sy0 >= 0
     }
 
