@@ -20,3 +20,4 @@ pub mod scaling_plot;
 pub mod scene;
 pub mod sweep;
 pub mod table;
+pub mod threads;
