@@ -4,6 +4,7 @@
 //! the closed form, and written as `speed_error.csv`, `speed_error.png` and `speed_error.md`.
 #![forbid(unsafe_code)]
 
+pub mod child;
 pub mod closed_form;
 pub mod csv;
 pub mod font;
@@ -12,7 +13,10 @@ pub mod measure;
 pub mod metrics;
 pub mod motion;
 pub mod pareto;
+pub mod peer;
 pub mod plot;
+pub mod scaling;
+pub mod scaling_plot;
 pub mod scene;
 pub mod sweep;
 pub mod table;

@@ -60,6 +60,23 @@ struct Args {
     /// (default 4).
     #[arg(long, value_delimiter = ',')]
     scales: Vec<u32>,
+    /// Time and peak RSS against image size, sphere count (instanced and unique), pixel samples
+    /// and AOV count: writes scaling.csv, scaling.png and scaling.md to --out (issue 21).
+    #[arg(long)]
+    scaling: bool,
+    /// Largest sphere count of --scaling (10⁶ takes minutes; default 10⁵, 10⁴ with --quick).
+    #[arg(long, default_value_t = 100_000)]
+    max_prims: usize,
+    /// Side by side with a peer renderer: this command line (the scene file appended), run on
+    /// the 14-scene set at --peer-scale × Format per axis; writes peer.csv and peer.md.
+    #[arg(long, allow_hyphen_values = true)]
+    peer: Option<String>,
+    /// Per-axis scale of --peer's scenes (2: 4× the pixels).
+    #[arg(long, default_value_t = 2)]
+    peer_scale: u32,
+    /// Only these scenes of --peer (comma-separated names).
+    #[arg(long, value_delimiter = ',')]
+    only: Vec<String>,
     /// Redraw speed_error.png and speed_error.md from this speed_error.csv, measuring nothing.
     #[arg(long)]
     from_csv: Option<PathBuf>,
@@ -194,7 +211,106 @@ fn write_outputs(
     Ok(())
 }
 
+/// Writes `files` (name, bytes) under `out`, each atomically.
+fn write_files(out: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    for (name, bytes) in files {
+        let path = out.join(name);
+        illume_imageio::write_atomically(&path, |w| {
+            w.write_all(bytes)
+                .map_err(|source| illume_imageio::ImageError::Io {
+                    path: path.display().to_string(),
+                    source,
+                })
+        })
+        .map_err(|e| e.to_string())?;
+        eprintln!("bench: wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// `--scaling`: every point of the plan, then the CSV, plot and summary.
+fn scaling(args: &Args, render: &Path, scratch: &Path, threads: usize) -> Result<(), String> {
+    let max_prims = if args.quick {
+        args.max_prims.min(10_000)
+    } else {
+        args.max_prims
+    };
+    let plan = bench::scaling::plan(args.quick, max_prims);
+    let repeat = args.repeat.unwrap_or(1);
+    let start = Instant::now();
+    let rows = bench::scaling::run(render, scratch, &plan, threads, repeat)?;
+    let heading = format!(
+        "Measured by `bench --scaling{}` in {:.0} s ({threads} threads, the smallest of {repeat} runs per number; \
+         wall, user + system CPU and peak RSS of the render process).",
+        if args.quick { " --quick" } else { "" },
+        start.elapsed().as_secs_f64()
+    );
+    write_files(
+        &args.out,
+        &[
+            ("scaling.csv", bench::scaling::to_csv(&rows).into_bytes()),
+            ("scaling.png", bench::scaling_plot::plot_png(&rows)?),
+            (
+                "scaling.md",
+                bench::scaling::markdown(&rows, &heading).into_bytes(),
+            ),
+        ],
+    )
+}
+
+/// `--peer CMD`: the side-by-side table. `Ok(failures)`.
+fn peer(
+    args: &Args,
+    cmd: &str,
+    render: &Path,
+    scratch: &Path,
+    threads: usize,
+) -> Result<usize, String> {
+    let peer: Vec<String> = cmd.split_whitespace().map(str::to_string).collect();
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let repeat = args.repeat.unwrap_or(1);
+    let cfg = bench::peer::PeerConfig {
+        render,
+        peer: &peer,
+        repo: &repo,
+        scratch,
+        scale: args.peer_scale,
+        threads,
+        repeat,
+    };
+    let (rows, failures) = bench::peer::run(&cfg, &args.only)?;
+    if rows.is_empty() {
+        return Err("no scene measured".into());
+    }
+    let heading = format!(
+        "Measured by `bench --peer '{cmd}'`: {} scenes at {}× their Format per axis, ours with {threads} threads, \
+         the renderers alternating scene by scene, the smallest of {repeat} runs per number; wall, user + system CPU \
+         and peak RSS of each renderer's process. Speed-up = peer / ours (above 1: we are faster); RSS ratio = ours / peer.",
+        rows.len(),
+        args.peer_scale
+    );
+    write_files(
+        &args.out,
+        &[
+            ("peer.csv", bench::peer::to_csv(&rows).into_bytes()),
+            (
+                "peer.md",
+                bench::peer::markdown(&rows, &heading).into_bytes(),
+            ),
+        ],
+    )?;
+    println!("{}", bench::peer::markdown(&rows, &heading));
+    Ok(failures)
+}
+
 fn main() -> ExitCode {
+    // The measuring wrapper (`bench::child`): bench runs each measured command under a copy of
+    // itself so that the command's peak RSS is that copy's only child's.
+    let argv: Vec<String> = std::env::args().collect();
+    if argv.get(1).map(String::as_str) == Some(bench::child::WRAPPER_FLAG) {
+        return bench::child::wrapper_main(&argv[2..]);
+    }
     let args = match Args::try_parse() {
         Ok(a) => a,
         Err(e) => {
@@ -252,6 +368,28 @@ fn main() -> ExitCode {
                 println!("{}", bench::threads::table(&rows));
                 ExitCode::from(u8::from(rows.iter().any(|r| !r.identical)))
             }
+            Err(e) => {
+                eprintln!("bench: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
+    if args.scaling || args.peer.is_some() {
+        let result = match &args.peer {
+            Some(cmd) => peer(
+                &args,
+                cmd,
+                &render,
+                &scratch,
+                args.threads.flatten().unwrap_or(2),
+            ),
+            None => scaling(&args, &render, &scratch, threads).map(|()| 0),
+        };
+        if own_scratch {
+            let _ = std::fs::remove_dir_all(&scratch);
+        }
+        return match result {
+            Ok(failures) => ExitCode::from(u8::from(failures > 0)),
             Err(e) => {
                 eprintln!("bench: {e}");
                 ExitCode::from(2)

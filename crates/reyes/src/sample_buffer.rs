@@ -151,8 +151,12 @@ impl SampleBuffer {
                 if quad.iter().any(|&k| g.pos[k].z.is_nan()) {
                     continue;
                 }
+                let reach = g.border_reach(i, j);
+                if !self.quad_may_reach(g, quad, reach) {
+                    continue;
+                }
                 let order = ((id as u64) << 32) | m as u64;
-                for (tri, reach) in split_quad(quad, g.border_reach(i, j)) {
+                for (tri, reach) in split_quad(quad, reach) {
                     let v = tri.map(|k| g.pos[k].as_dvec3());
                     if let Some(t) = RasterTriangle::new(v, tri, reach) {
                         hits += self.sample_triangle(g, &t, a, order);
@@ -161,6 +165,28 @@ impl SampleBuffer {
             }
         }
         hits
+    }
+
+    /// Whether a micropolygon's raster bound, grown by its largest edge reach, touches this
+    /// bucket's sample region. A grid that overlaps several buckets is sampled once per
+    /// bucket, and most of its micropolygons lie outside any one of them (issue 21 part 3:
+    /// triangle setup for those was the hider's top cost on `rib/geometry.rib`). The test is
+    /// [`Self::sample_triangle`]'s own bound test on a bound that contains both triangles'
+    /// (same f32 operations, monotone), so it rejects only what that test would.
+    fn quad_may_reach(&self, g: &ShadedGrid, quad: [usize; 4], reach: [f64; 4]) -> bool {
+        let [sx0, sy0] = self.origin;
+        let [sw, sh] = self.size;
+        let grow = reach.iter().copied().fold(0.0f64, f64::max) as f32;
+        let (mut lo, mut hi) = ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]);
+        for k in quad {
+            let p = g.pos[k];
+            lo = [lo[0].min(p.x), lo[1].min(p.y)];
+            hi = [hi[0].max(p.x), hi[1].max(p.y)];
+        }
+        (lo[0] - grow).floor() as i32 - sx0 < sw as i32
+            && (hi[0] + grow).floor() as i32 - sx0 >= 0
+            && (lo[1] - grow).floor() as i32 - sy0 < sh as i32
+            && (hi[1] + grow).floor() as i32 - sy0 >= 0
     }
 
     /// Samples one still triangle (grid vertex `first` names its micropolygon).
