@@ -492,6 +492,29 @@ fn an_sl_exterior_sees_e_at_the_ray_origin() {
     assert_near(got, want, 0.011 / 100.0 + 1e-5, "E");
 }
 
+/// A reflection that hits nothing crosses the mirror's `Exterior` up to the far clipping
+/// distance `far` (measured along the ray): `fog` over black gives `bg·(1 − e^(−far/D))`.
+#[test]
+fn an_exterior_fog_colours_a_reflection_that_misses_everything() {
+    let dir = shader_dir("vol-miss", &[("tmirror", MIRROR)]);
+    let miss = |clipping: &str, attrs: &str| {
+        let world = format!(
+            "AttributeBegin\n{attrs}\nSurface \"tmirror\"\n\
+             Polygon \"P\" [-5 -5 10  -5 5 10  5 5 10  5 -5 10]\nAttributeEnd"
+        );
+        let r = render_rib(&scene(&dir, clipping, &world));
+        pixel(&r, RES / 2 + 7, RES / 2 - 11)
+    };
+    let fog = "Exterior \"fog\" \"distance\" [10] \"background\" [0.2 0.3 0.7]";
+    assert_near(miss("Clipping 0.1 20", ""), [0.0; 3], 1e-6, "no volume");
+    let k = 1.0 - (-20.0f64 / 10.0).exp();
+    let want = RAY_BG.map(|c| c * k);
+    assert_near(miss("Clipping 0.1 20", fog), want, 1e-3, "fog to the far plane");
+    // The Interior is not on the reflection's side: still black.
+    let interior = fog.replace("Exterior", "Interior");
+    assert_near(miss("Clipping 0.1 20", &interior), [0.0; 3], 1e-6, "Interior");
+}
+
 // ---- blurred environment("raytrace") -------------------------------------------------------
 
 const TENV: &str = "surface tenv(float blur = 0; float samples = 16; float usetrace = 0) {

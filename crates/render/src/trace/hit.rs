@@ -26,9 +26,15 @@ pub(crate) struct HitVertex {
     pub os: Vec3,
 }
 
-/// Appends the vertices of the triangles `rayscene::triangles` makes from `g` (the coarse,
-/// even-indexed grid; two triangles per quad, same order).
-pub(crate) fn hit_vertices(g: &Grid, a: &Attributes, out: &mut Vec<[HitVertex; 3]>) {
+/// Appends the vertices of the coarse grid of `g` (its even-indexed vertices, each once) to
+/// `verts` and the triangles `rayscene::triangles` makes from them (two per quad, same order)
+/// to `tris`, as indices into `verts`.
+pub(crate) fn hit_vertices(
+    g: &Grid,
+    a: &Attributes,
+    verts: &mut Vec<HitVertex>,
+    tris: &mut Vec<[u32; 3]>,
+) {
     let vertex = |i: usize, j: usize| {
         let k = j * g.nu + i;
         HitVertex {
@@ -56,16 +62,19 @@ pub(crate) fn hit_vertices(g: &Grid, a: &Attributes, out: &mut Vec<[HitVertex; 3
                 .unwrap_or(Vec3::from(a.opacity)),
         }
     };
+    let base = verts.len() as u32;
+    let cu = g.nu.div_ceil(2);
+    for j in (0..g.nv).step_by(2) {
+        for i in (0..g.nu).step_by(2) {
+            verts.push(vertex(i, j));
+        }
+    }
+    let at = |i: usize, j: usize| base + (j / 2 * cu + i / 2) as u32;
     for j in (0..g.nv - 2).step_by(2) {
         for i in (0..g.nu - 2).step_by(2) {
-            let (a, b, c, d) = (
-                vertex(i, j),
-                vertex(i + 2, j),
-                vertex(i + 2, j + 2),
-                vertex(i, j + 2),
-            );
-            out.push([a, b, c]);
-            out.push([a, c, d]);
+            let (a, b, c, d) = (at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i, j + 2));
+            tris.push([a, b, c]);
+            tris.push([a, c, d]);
         }
     }
 }

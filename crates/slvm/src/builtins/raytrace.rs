@@ -66,7 +66,9 @@ impl Exec<'_> {
                 self.write_back(&e[3], &triples(&hits, n, |h| h.1), mask);
                 self.write_back(&e[4], &triples(&hits, n, |h| h.2), mask);
                 // The ray that missed everything: this one, when it missed (one bounce).
-                let miss = |i: usize, v: Vec3| if hits[i].is_some() { Vec3::ZERO } else { v };
+                // (A miss can still bring back the colour of the volume it crossed: `t` ∞.)
+                let missed = |i: usize| hits[i].is_none_or(|h| h.0 >= NO_HIT);
+                let miss = |i: usize, v: Vec3| if missed(i) { v } else { Vec3::ZERO };
                 let pm = (0..n).map(|i| miss(i, *p.at(i))).collect();
                 let rm = (0..n)
                     .map(|i| miss(i, r.at(i).normalize_or_zero()))
@@ -297,7 +299,8 @@ impl Exec<'_> {
                 }
                 let shade = shade && self.env.ray_depth < t.max_depth();
                 let h = t.trace(&self.ray_start(i, *p.at(i)), dir, self.env.ray_depth, shade)?;
-                Some((h.t as f32, h.p, h.n, h.ci))
+                let dist = if h.t.is_finite() { h.t as f32 } else { NO_HIT };
+                Some((dist, h.p, h.n, h.ci))
             })
             .collect()
     }
