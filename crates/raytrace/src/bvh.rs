@@ -146,7 +146,17 @@ impl Bvh {
             .into_iter()
             .zip(0u32..)
             .filter(|(t, _)| t.p.iter().all(|p| p.is_finite()) && t.double_area() > 0.0)
-            .map(|(t, i)| (t, i, if grouped { groups[i as usize] } else { NO_GROUP }))
+            .map(|(t, i)| {
+                (
+                    t,
+                    i,
+                    if grouped {
+                        groups[i as usize]
+                    } else {
+                        NO_GROUP
+                    },
+                )
+            })
             .collect();
         let tris: Vec<Triangle> = kept.iter().map(|k| k.0).collect();
         let input_ids: Vec<u32> = kept.iter().map(|k| k.1).collect();
@@ -175,7 +185,11 @@ impl Bvh {
         }
         let ordered = b.order.iter().map(|&i| b.tris[i as usize]).collect();
         let ids = b.order.iter().map(|&i| input_ids[i as usize]).collect();
-        let groups = b.order.iter().map(|&i| b.tri_group.get(i as usize).copied().unwrap_or(NO_GROUP)).collect();
+        let groups = b
+            .order
+            .iter()
+            .map(|&i| b.tri_group.get(i as usize).copied().unwrap_or(NO_GROUP))
+            .collect();
         let node_group = std::mem::take(&mut b.node_group);
         let mut stats = b.stats;
         stats.nodes = b.nodes.len();
@@ -305,7 +319,11 @@ impl Bvh {
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
         // Without groups nothing is skipped (every triangle's group is NO_GROUP).
-        let skip = if self.groups.is_empty() { NO_GROUP } else { skip };
+        let skip = if self.groups.is_empty() {
+            NO_GROUP
+        } else {
+            skip
+        };
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= t_min {
             return None;
         }
@@ -544,4 +562,3 @@ mod tests {
         assert!(!bvh.occluded(o, DVec3::Y, 0.0, 10.0));
     }
 }
-

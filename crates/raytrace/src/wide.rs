@@ -66,18 +66,16 @@ fn collapse_into(binary: u32, children: &dyn Fn(u32) -> [Child; 2], out: &mut Ve
     let mut kids: Vec<Child> = children(binary).to_vec();
     while kids.len() < 4 {
         // The interior child with the largest box (ties: the first), opened up.
-        let Some((k, _)) = kids
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| c.count == 0)
-            .fold(None, |best: Option<(usize, f32)>, (k, c)| {
+        let Some((k, _)) = kids.iter().enumerate().filter(|(_, c)| c.count == 0).fold(
+            None,
+            |best: Option<(usize, f32)>, (k, c)| {
                 let a = c.half_area();
                 match best {
                     Some((_, b)) if b >= a => best,
                     _ => Some((k, a)),
                 }
-            })
-        else {
+            },
+        ) else {
             break;
         };
         let [l, r] = children(kids[k].first);

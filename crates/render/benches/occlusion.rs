@@ -98,7 +98,10 @@ fn main() {
     println!("with occlusion     {with:>8.3} s");
     println!("ratio              {:>8.2}x", with / without);
     if let (Some(a), Some(b)) = (without_cpu, with_cpu) {
-        println!("CPU time           {a:>8.2} s / {b:.2} s, ratio {:.2}x", b / a.max(0.01));
+        println!(
+            "CPU time           {a:>8.2} s / {b:.2} s, ratio {:.2}x",
+            b / a.max(0.01)
+        );
     }
     println!(
         "occlusion rays/s   {:>8.3e}  ({rays:.0} rays over the extra time)",

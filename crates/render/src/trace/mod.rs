@@ -21,7 +21,7 @@ mod volume;
 use crate::rayscene::RayScene;
 use crate::shading::FrameShading;
 use glam::{DVec3, Vec3};
-use illume_shade::{RayStart, RayTracer, TraceHit};
+use illume_shade::{RayDifferential, RayStart, RayTracer, TraceHit};
 
 /// Surfaces composited along one `trace()` ray before it counts as opaque.
 const MAX_LAYERS: usize = 16;
@@ -66,7 +66,7 @@ impl RayTracer for FrameShading<'_> {
                 None
             };
         };
-        let (grid, _) = hit::hit_grid(scene, &first, origin, dir);
+        let (grid, _) = hit::hit_grid(scene, &first, origin, dir, &RayDifferential::default());
         let flip = |prim: usize| {
             self.frame
                 .primitives
@@ -87,7 +87,7 @@ impl RayTracer for FrameShading<'_> {
         let mut through = Vec3::ONE;
         let mut hit = first;
         for _ in 0..MAX_LAYERS {
-            let (grid, prim) = hit::hit_grid(scene, &hit, origin, dir);
+            let (grid, prim) = hit::hit_grid(scene, &hit, origin, dir, &from.beam);
             let Some(attrs) = scene.prim(prim).and_then(|p| p.attributes.clone()) else {
                 break;
             };

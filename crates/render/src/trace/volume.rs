@@ -167,12 +167,21 @@ mod tests {
     fn a_missing_ray_reaches_the_far_plane_or_the_box_exit() {
         let b = Some((Vec3::splat(-1.0), Vec3::splat(2.0)));
         assert_eq!(miss_distance(50.0, b, Vec3::ZERO, DVec3::X), Some(50.0));
-        assert_eq!(miss_distance(f64::INFINITY, b, Vec3::ZERO, DVec3::X), Some(2.0));
+        assert_eq!(
+            miss_distance(f64::INFINITY, b, Vec3::ZERO, DVec3::X),
+            Some(2.0)
+        );
         let diag = DVec3::new(1.0, -1.0, 0.0).normalize();
         let d = miss_distance(f64::INFINITY, b, Vec3::ZERO, diag).unwrap();
         assert!((d - std::f64::consts::SQRT_2).abs() < 1e-12);
         // An origin outside the box counts as inside it (grown), so a segment is never negative.
-        assert_eq!(miss_distance(f64::INFINITY, b, Vec3::splat(5.0), DVec3::X), None);
-        assert_eq!(miss_distance(f64::INFINITY, None, Vec3::ZERO, DVec3::X), None);
+        assert_eq!(
+            miss_distance(f64::INFINITY, b, Vec3::splat(5.0), DVec3::X),
+            None
+        );
+        assert_eq!(
+            miss_distance(f64::INFINITY, None, Vec3::ZERO, DVec3::X),
+            None
+        );
     }
 }
