@@ -156,12 +156,12 @@ impl Node4 {
     pub fn enters_exact(&self, ray: &PreparedRay, t_max: f64) -> (u32, Vec4) {
         let mut mask = 0;
         let mut t0 = [0.0f32; 4];
-        for k in 0..self.len as usize {
+        for (k, entry) in t0.iter_mut().enumerate().take(self.len as usize) {
             let min = Vec3::new(self.min[0][k], self.min[1][k], self.min[2][k]);
             let max = Vec3::new(self.max[0][k], self.max[1][k], self.max[2][k]);
             if let Some(t) = slab::exact_entry(min, max, ray, t_max) {
                 mask |= 1 << k;
-                t0[k] = t as f32;
+                *entry = t as f32;
             }
         }
         (mask, Vec4::from_array(t0))
