@@ -1,13 +1,15 @@
 //! A bounding volume hierarchy over triangles: binned surface-area-heuristic build (Wald,
 //! "On fast construction of SAH-based bounding volume hierarchies", 2007) into a flat array of
 //! nodes in depth-first order (pbrt's `LinearBVHNode` layout: the left child follows its parent,
-//! the parent stores the right child's index), and any-hit traversal for shadow rays.
+//! the parent stores the right child's index), collapsed into four-wide nodes (`wide.rs`) that
+//! rays traverse: any-hit for shadow rays, nearest-first for the closest hit.
 //!
 //! The build is sequential and every choice is a pure function of the input order (bins,
 //! ties broken towards the lower axis and bin), so the same triangles always give the same
 //! tree, whatever the thread count of the renderer around it.
 use crate::slab::{self, SlabRay};
 use crate::triangle::{PreparedRay, Triangle};
+use crate::wide::{self, Child, Node4, WideRay};
 use glam::{DVec3, Vec3};
 
 /// Centroid bins per axis.
@@ -16,8 +18,14 @@ const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
 /// SAH cost of one traversal step relative to one triangle test.
 const TRAVERSAL_COST: f32 = 1.0;
-/// Traversal stack: the tree depth is bounded by this (a leaf is forced below it).
+/// The binary tree's depth is bounded by this (a leaf is forced below it; only a heap of
+/// more than 65535 triangles with one centroid chains deeper, by its log₂).
 const MAX_DEPTH: usize = 60;
+/// Traversal stack: a visit pushes at most three more entries than it pops, and the
+/// four-wide tree is no deeper than the binary one (≤ 60 + 17 levels).
+const STACK: usize = 256;
+/// The group of a subtree whose triangles belong to more than one group (or to none).
+pub const NO_GROUP: u32 = u32::MAX;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Aabb {
@@ -59,26 +67,6 @@ impl Aabb {
         }
         d.x * d.y + d.y * d.z + d.z * d.x
     }
-
-    /// Slab test in `f64` against `(0, t_max)`. The `f32` box is exact in `f64`, and the
-    /// `1 + 4ε` growth of the far distance (pbrt's `gamma(3)` argument) keeps a ray grazing a
-    /// face from missing the box of a triangle it hits.
-    fn hit(&self, ray: &PreparedRay, t_max: f64) -> bool {
-        let (mut t0, mut t1) = (0.0f64, t_max);
-        for k in 0..3 {
-            let a = (f64::from(self.min[k]) - ray.origin[k]) * ray.inv_dir[k];
-            let b = (f64::from(self.max[k]) - ray.origin[k]) * ray.inv_dir[k];
-            // NaN is 0·∞: the origin lies on a slab plane the ray runs parallel to, so the
-            // slab does not constrain the ray (the boundary counts as inside).
-            if a.is_nan() || b.is_nan() {
-                continue;
-            }
-            t0 = t0.max(a.min(b));
-            t1 = t1.min(a.max(b));
-        }
-        let t1 = t1 * (1.0 + 4.0 * f64::EPSILON);
-        t0 <= t1
-    }
 }
 
 /// One node: a box, and either two children (`count == 0`: the left child is the next node,
@@ -113,11 +101,16 @@ pub struct Hit {
 /// this ray hit first?".
 #[derive(Clone, Debug)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    /// The four-wide tree (`wide.rs`); node 0 is the root.
+    nodes: Vec<Node4>,
+    /// The box around everything (padded), for [`Bvh::bound`].
+    bound: Option<(Vec3, Vec3)>,
     triangles: Vec<Triangle>,
     /// Per stored triangle: its index in the caller's vector (degenerate ones are dropped
     /// and the rest reordered, so the caller's data is found through this).
     ids: Vec<u32>,
+    /// Per stored triangle: its group (empty when built without groups).
+    groups: Vec<u32>,
     stats: BvhStats,
     /// The largest coordinate magnitude of the scene: the boxes are padded by
     /// `slab::pad(scale)` for the `f32` box test.
@@ -126,6 +119,10 @@ pub struct Bvh {
 
 struct Build<'a> {
     tris: &'a [Triangle],
+    /// Per triangle (build index): its group; empty: no groups.
+    tri_group: &'a [u32],
+    /// Per binary node: the group all its triangles share, or [`NO_GROUP`].
+    node_group: Vec<u32>,
     bounds: Vec<Aabb>,
     centroids: Vec<Vec3>,
     order: Vec<u32>,
@@ -137,15 +134,43 @@ impl Bvh {
     /// Builds the tree. Degenerate (zero-area) and non-finite triangles are dropped: they can
     /// block no ray and would poison the bounds.
     pub fn new(triangles: Vec<Triangle>) -> Bvh {
-        let (tris, input_ids): (Vec<Triangle>, Vec<u32>) = triangles
+        Bvh::with_groups(triangles, Vec::new())
+    }
+
+    /// [`Bvh::new`] with a group per triangle (the caller's primitive): subtrees of one group
+    /// are known as such, so a ray can pass over a whole group it cannot hit
+    /// ([`Bvh::occluded_except`]). `groups` is empty or one per triangle.
+    pub fn with_groups(triangles: Vec<Triangle>, groups: Vec<u32>) -> Bvh {
+        let grouped = groups.len() == triangles.len() && !groups.is_empty();
+        let kept: Vec<(Triangle, u32, u32)> = triangles
             .into_iter()
             .zip(0u32..)
             .filter(|(t, _)| t.p.iter().all(|p| p.is_finite()) && t.double_area() > 0.0)
-            .unzip();
+            .map(|(t, i)| {
+                (
+                    t,
+                    i,
+                    if grouped {
+                        groups[i as usize]
+                    } else {
+                        NO_GROUP
+                    },
+                )
+            })
+            .collect();
+        let tris: Vec<Triangle> = kept.iter().map(|k| k.0).collect();
+        let input_ids: Vec<u32> = kept.iter().map(|k| k.1).collect();
+        let tri_group: Vec<u32> = if grouped {
+            kept.iter().map(|k| k.2).collect()
+        } else {
+            Vec::new()
+        };
         let bounds: Vec<Aabb> = tris.iter().map(Aabb::of).collect();
         let centroids = bounds.iter().map(|b| (b.min + b.max) * 0.5).collect();
         let mut b = Build {
             tris: &tris,
+            tri_group: &tri_group,
+            node_group: Vec::new(),
             bounds,
             centroids,
             order: (0..tris.len() as u32).collect(),
@@ -160,6 +185,12 @@ impl Bvh {
         }
         let ordered = b.order.iter().map(|&i| b.tris[i as usize]).collect();
         let ids = b.order.iter().map(|&i| input_ids[i as usize]).collect();
+        let groups = b
+            .order
+            .iter()
+            .map(|&i| b.tri_group.get(i as usize).copied().unwrap_or(NO_GROUP))
+            .collect();
+        let node_group = std::mem::take(&mut b.node_group);
         let mut stats = b.stats;
         stats.nodes = b.nodes.len();
         let mut nodes = b.nodes;
@@ -171,10 +202,28 @@ impl Bvh {
             n.bound.min -= pad;
             n.bound.max += pad;
         }
+        let child = |i: u32| {
+            let n = &nodes[i as usize];
+            Child {
+                min: n.bound.min,
+                max: n.bound.max,
+                first: if n.count > 0 { n.offset } else { i },
+                count: u32::from(n.count),
+                group: node_group[i as usize],
+            }
+        };
+        let wide = match nodes.first() {
+            Some(_) => wide::collapse(child(0), &|i| {
+                [child(i + 1), child(nodes[i as usize].offset)]
+            }),
+            None => Vec::new(),
+        };
         Bvh {
-            nodes,
+            bound: nodes.first().map(|n| (n.bound.min, n.bound.max)),
+            nodes: wide,
             triangles: ordered,
             ids,
+            groups: if grouped { groups } else { Vec::new() },
             stats,
             scale,
         }
@@ -182,6 +231,11 @@ impl Bvh {
 
     pub fn stats(&self) -> BvhStats {
         self.stats
+    }
+
+    /// The box around every triangle (slightly padded), `None` for an empty tree.
+    pub fn bound(&self) -> Option<(Vec3, Vec3)> {
+        self.bound
     }
 
     pub fn is_empty(&self) -> bool {
@@ -204,8 +258,34 @@ impl Bvh {
         t_max: f64,
         keep: &dyn Fn(u32) -> bool,
     ) -> bool {
-        self.traverse(origin, dir, t_min, t_max, true, keep)
+        self.traverse(origin, dir, t_min, t_max, true, NO_GROUP, keep)
             .is_some()
+    }
+
+    /// [`Bvh::occluded_by`] passing over group `skip` (a primitive the caller has shown the
+    /// ray cannot hit): its subtrees are not entered and its triangles not tested.
+    pub fn occluded_except(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        (t_min, t_max): (f64, f64),
+        skip: u32,
+        keep: &dyn Fn(u32) -> bool,
+    ) -> bool {
+        self.traverse(origin, dir, t_min, t_max, true, skip, keep)
+            .is_some()
+    }
+
+    /// [`Bvh::nearest_hit`] passing over group `skip` (as [`Bvh::occluded_except`]).
+    pub fn nearest_hit_except(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        (t_min, t_max): (f64, f64),
+        skip: u32,
+        keep: &dyn Fn(u32) -> bool,
+    ) -> Option<Hit> {
+        self.traverse(origin, dir, t_min, t_max, false, skip, keep)
     }
 
     /// The nearest hit's `t` in `(t_min, t_max)`, if any (for tests and probes).
@@ -224,9 +304,10 @@ impl Bvh {
         t_max: f64,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
-        self.traverse(origin, dir, t_min, t_max, false, keep)
+        self.traverse(origin, dir, t_min, t_max, false, NO_GROUP, keep)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn traverse(
         &self,
         origin: DVec3,
@@ -234,66 +315,110 @@ impl Bvh {
         t_min: f64,
         mut t_max: f64,
         any: bool,
+        skip: u32,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
+        // Without groups nothing is skipped (every triangle's group is NO_GROUP).
+        let skip = if self.groups.is_empty() {
+            NO_GROUP
+        } else {
+            skip
+        };
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= t_min {
             return None;
         }
         let ray = PreparedRay::new(origin, dir)?;
-        let slab = SlabRay::new(origin, dir, self.scale);
-        let enters = |b: &Aabb, t_max: f64| match &slab {
-            Some(r) => r.hits(b.min, b.max, t_max as f32),
-            None => b.hit(&ray, t_max),
-        };
-        let negative = [dir.x < 0.0, dir.y < 0.0, dir.z < 0.0];
-        let mut stack = [0u32; MAX_DEPTH + 2];
+        let wide = SlabRay::new(origin, dir, self.scale).map(|r| WideRay::new(&r));
+        // Pending nodes with where the ray enters them, so the nearest is visited first and
+        // nodes beyond a hit found meanwhile are skipped.
+        let mut stack = [(0u32, 0.0f32); STACK];
         let mut top = 0usize;
-        let mut current = 0usize;
+        let mut current = 0u32;
         let mut found = None;
         loop {
-            let node = &self.nodes[current];
-            if enters(&node.bound, t_max) {
-                if node.count > 0 {
-                    let start = node.offset as usize;
-                    let end = start + node.count as usize;
-                    for (t, &id) in self.triangles[start..end].iter().zip(&self.ids[start..end]) {
-                        let Some((hit, barycentric)) = t.intersect_barycentric(&ray, t_min, t_max)
-                        else {
-                            continue;
-                        };
-                        if !keep(id) {
-                            continue;
-                        }
-                        let h = Hit {
-                            t: hit,
-                            triangle: id,
-                            barycentric,
-                        };
-                        if any {
-                            return Some(h);
-                        }
-                        t_max = hit;
-                        found = Some(h);
-                    }
-                } else {
-                    // Visit the child nearer along the ray first (better early exit).
-                    let (first, second) = if negative[node.axis as usize] {
-                        (node.offset as usize, current + 1)
-                    } else {
-                        (current + 1, node.offset as usize)
-                    };
-                    stack[top] = second as u32;
-                    top += 1;
-                    current = first;
+            let node = &self.nodes[current as usize];
+            let (mut mask, entry) = match &wide {
+                Some(w) => node.enters(w, t_max as f32),
+                None => node.enters_exact(&ray, t_max),
+            };
+            let entry = entry.to_array();
+            let mut inner = [(0u32, 0.0f32); 4];
+            let mut inner_len = 0;
+            while mask != 0 {
+                let k = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if skip != NO_GROUP && node.group[k] == skip {
                     continue;
                 }
+                if node.count[k] == 0 {
+                    inner[inner_len] = (node.first[k], entry[k]);
+                    inner_len += 1;
+                    continue;
+                }
+                let start = node.first[k] as usize;
+                let end = start + node.count[k] as usize;
+                for (i, (t, &id)) in self.triangles[start..end]
+                    .iter()
+                    .zip(&self.ids[start..end])
+                    .enumerate()
+                {
+                    if skip != NO_GROUP && self.groups[start + i] == skip {
+                        continue;
+                    }
+                    let Some((hit, barycentric)) = t.intersect_barycentric(&ray, t_min, t_max)
+                    else {
+                        continue;
+                    };
+                    if !keep(id) {
+                        continue;
+                    }
+                    let h = Hit {
+                        t: hit,
+                        triangle: id,
+                        barycentric,
+                    };
+                    if any {
+                        return Some(h);
+                    }
+                    t_max = hit;
+                    found = Some(h);
+                }
             }
-            if top == 0 {
-                return found;
+            // Farthest first onto the stack: the nearest comes off it next (an insertion
+            // sort of at most four, stable, so the order is a pure function of the ray).
+            for k in 1..inner_len {
+                let mut j = k;
+                while j > 0 && inner[j - 1].1 < inner[j].1 {
+                    inner.swap(j - 1, j);
+                    j -= 1;
+                }
             }
-            top -= 1;
-            current = stack[top] as usize;
+            for &entry in &inner[..inner_len] {
+                stack[top] = entry;
+                top += 1;
+            }
+            let reach = t_max as f32 * slab::FAR_GROWTH;
+            loop {
+                if top == 0 {
+                    return found;
+                }
+                top -= 1;
+                let (next, enter) = stack[top];
+                if enter <= reach {
+                    current = next;
+                    break;
+                }
+            }
         }
+    }
+}
+
+/// The group two subtrees share, or [`NO_GROUP`].
+fn common(a: u32, b: u32) -> u32 {
+    if a == b {
+        a
+    } else {
+        NO_GROUP
     }
 }
 
@@ -313,14 +438,16 @@ impl Build<'_> {
             axis: 0,
         });
         let n = end - start;
+        self.node_group.push(NO_GROUP);
         if n <= 1 || depth >= MAX_DEPTH {
             return self.leaf(index, start, end);
         }
         let Some((axis, mid)) = self.split(start, end, bound) else {
             return self.leaf(index, start, end);
         };
-        self.node(start, mid, depth + 1);
+        let left = self.node(start, mid, depth + 1);
         let right = self.node(mid, end, depth + 1);
+        self.node_group[index] = common(self.node_group[left], self.node_group[right]);
         let node = &mut self.nodes[index];
         node.offset = right as u32;
         node.count = 0;
@@ -333,14 +460,19 @@ impl Build<'_> {
         // is chained as a list of leaves under interior nodes.
         if end - start > u16::MAX as usize {
             let mid = start + (end - start) / 2;
-            self.node(start, mid, MAX_DEPTH);
+            let left = self.node(start, mid, MAX_DEPTH);
             let right = self.node(mid, end, MAX_DEPTH);
+            self.node_group[index] = common(self.node_group[left], self.node_group[right]);
             let node = &mut self.nodes[index];
             node.offset = right as u32;
             node.count = 0;
             return index;
         }
         self.stats.leaves += 1;
+        let group = |i: &u32| self.tri_group.get(*i as usize).copied().unwrap_or(NO_GROUP);
+        let mut ids = self.order[start..end].iter();
+        let first = ids.next().map_or(NO_GROUP, group);
+        self.node_group[index] = ids.fold(first, |g, i| common(g, group(i)));
         index
     }
 
@@ -420,14 +552,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_box_is_hit_by_a_ray_along_its_face() {
-        let b = Aabb {
-            min: Vec3::ZERO,
-            max: Vec3::ONE,
-        };
-        let ray = PreparedRay::new(DVec3::new(-1.0, 0.0, 0.5), DVec3::X).unwrap();
-        assert!(b.hit(&ray, 10.0));
-        let ray = PreparedRay::new(DVec3::new(-1.0, -0.01, 0.5), DVec3::X).unwrap();
-        assert!(!b.hit(&ray, 10.0));
+    fn a_ray_along_a_face_of_a_single_triangle_box_finds_it() {
+        // The triangle lies in the plane y = 0; a ray in that plane's slab still visits it.
+        let t = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Z);
+        let bvh = Bvh::new(vec![t]);
+        assert!(bvh.bound().is_some());
+        let o = DVec3::new(0.25, 1.0, 0.25);
+        assert_eq!(bvh.nearest(o, DVec3::NEG_Y, 0.0, 10.0), Some(1.0));
+        assert!(!bvh.occluded(o, DVec3::Y, 0.0, 10.0));
     }
 }

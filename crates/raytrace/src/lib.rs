@@ -7,8 +7,9 @@
 //!   the offsets the caller uses against self-intersection: rays through shared edges and
 //!   vertices never slip between two triangles.
 //! * [`Bvh`]: binned surface-area-heuristic build (16 bins per axis, deterministic: no
-//!   threads, ties broken by index), flat node array in depth-first order, any-hit traversal
-//!   with a small explicit stack.
+//!   threads, ties broken by index), collapsed into four-wide nodes whose four child boxes
+//!   one `f32` SIMD test checks at once; any-hit traversal for shadow rays, nearest-first for
+//!   the closest hit.
 //!
 //! The crate knows nothing of primitives or shading: the hider dices the scene into triangles
 //! and the lights ask [`Bvh::occluded`] through a trait object, so `illume-shade` never depends
@@ -18,6 +19,7 @@
 mod bvh;
 mod slab;
 mod triangle;
+mod wide;
 
-pub use bvh::{Bvh, BvhStats, Hit};
+pub use bvh::{Bvh, BvhStats, Hit, NO_GROUP};
 pub use triangle::Triangle;

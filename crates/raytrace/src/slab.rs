@@ -13,6 +13,7 @@
 //! origin on the slab's plane gives `0` rather than `0·∞ = NaN`: the boundary counts as
 //! inside, as in the `f64` test, and elsewhere the slab's interval lies beyond any finite
 //! `t_max` or is conservative (a box visited needlessly, never one missed).
+use crate::triangle::PreparedRay;
 use glam::{DVec3, Vec3, Vec3A};
 
 /// A direction component's magnitude below which it counts as this (keeps the inverse finite).
@@ -24,7 +25,7 @@ const PAD: f32 = 1.0 / 262_144.0;
 /// ≈ 5e-7·(|o| + 2·scale), stays under the padding).
 const ORIGIN_REACH: f64 = 2.0;
 /// Growth of the far distance, as the `f64` test's `1 + 4ε`, for `t_max`'s own rounding.
-const FAR_GROWTH: f32 = 1.0 + 1.0 / 1_048_576.0;
+pub(crate) const FAR_GROWTH: f32 = 1.0 + 1.0 / 1_048_576.0;
 
 /// How much every box is grown for a scene whose largest coordinate magnitude is `scale`.
 pub(crate) fn pad(scale: f32) -> f32 {
@@ -60,15 +61,34 @@ impl SlabRay {
         })
     }
 
-    /// Whether the ray meets the (padded) box within `(0, t_max)`.
-    #[inline]
-    pub fn hits(&self, min: Vec3, max: Vec3, t_max: f32) -> bool {
-        let a = (Vec3A::from(min) - self.origin) * self.inv_dir;
-        let b = (Vec3A::from(max) - self.origin) * self.inv_dir;
-        let t0 = a.min(b).max_element().max(0.0);
-        let t1 = a.max(b).min_element().min(t_max * FAR_GROWTH);
-        t0 <= t1
+    pub fn origin(&self) -> Vec3A {
+        self.origin
     }
+
+    pub fn inv_dir(&self) -> Vec3A {
+        self.inv_dir
+    }
+}
+
+/// The exact slab test in `f64` against `(0, t_max)`: where the ray enters the box, if it
+/// meets it. The `f32` box is exact in `f64`, and the `1 + 4ε` growth of the far distance
+/// (pbrt's `gamma(3)` argument) keeps a ray grazing a face from missing the box of a
+/// triangle it hits.
+pub(crate) fn exact_entry(min: Vec3, max: Vec3, ray: &PreparedRay, t_max: f64) -> Option<f64> {
+    let (mut t0, mut t1) = (0.0f64, t_max);
+    for k in 0..3 {
+        let a = (f64::from(min[k]) - ray.origin[k]) * ray.inv_dir[k];
+        let b = (f64::from(max[k]) - ray.origin[k]) * ray.inv_dir[k];
+        // NaN is 0·∞: the origin lies on a slab plane the ray runs parallel to, so the
+        // slab does not constrain the ray (the boundary counts as inside).
+        if a.is_nan() || b.is_nan() {
+            continue;
+        }
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    let t1 = t1 * (1.0 + 4.0 * f64::EPSILON);
+    (t0 <= t1).then_some(t0)
 }
 
 #[cfg(test)]
@@ -76,11 +96,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn an_origin_on_a_face_plane_running_along_it_is_inside() {
-        let r = SlabRay::new(DVec3::new(-1.0, 0.0, 0.5), DVec3::X, 10.0).unwrap();
-        assert!(r.hits(Vec3::ZERO, Vec3::ONE, 10.0));
-        let r = SlabRay::new(DVec3::new(-1.0, -0.01, 0.5), DVec3::X, 10.0).unwrap();
-        assert!(!r.hits(Vec3::ZERO, Vec3::ONE, 10.0));
+    fn the_exact_test_counts_a_face_plane_as_inside() {
+        let ray = PreparedRay::new(DVec3::new(-1.0, 0.0, 0.5), DVec3::X).unwrap();
+        assert_eq!(exact_entry(Vec3::ZERO, Vec3::ONE, &ray, 10.0), Some(1.0));
+        let ray = PreparedRay::new(DVec3::new(-1.0, -0.01, 0.5), DVec3::X).unwrap();
+        assert_eq!(exact_entry(Vec3::ZERO, Vec3::ONE, &ray, 10.0), None);
     }
 
     #[test]

@@ -20,11 +20,13 @@ pub struct Triangle {
 pub(crate) struct PreparedRay {
     pub origin: DVec3,
     pub inv_dir: DVec3,
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f64,
-    sy: f64,
+    /// The permutation and shear as three rows: `row_x·q = q[kx] + sx·q[kz]`,
+    /// `row_y·q = q[ky] + sy·q[kz]`, `row_z·q = q[kz]` (the zero and unit entries make each
+    /// dot product round exactly as the two-term sum it stands for, so the test stays
+    /// watertight; it only avoids indexing by the permutation at every vertex).
+    row_x: DVec3,
+    row_y: DVec3,
+    row_z: DVec3,
     sz: f64,
 }
 
@@ -44,14 +46,14 @@ impl PreparedRay {
         };
         let kx = (kz + 1) % 3;
         let ky = (kx + 1) % 3;
+        let unit = |k: usize| DVec3::AXES[k];
+        let (sx, sy) = (-dir[kx] / dir[kz], -dir[ky] / dir[kz]);
         Some(PreparedRay {
             origin,
             inv_dir: DVec3::ONE / dir,
-            kx,
-            ky,
-            kz,
-            sx: -dir[kx] / dir[kz],
-            sy: -dir[ky] / dir[kz],
+            row_x: unit(kx) + unit(kz) * sx,
+            row_y: unit(ky) + unit(kz) * sy,
+            row_z: unit(kz),
             sz: 1.0 / dir[kz],
         })
     }
@@ -92,16 +94,11 @@ impl Triangle {
         t_min: f64,
         t_max: f64,
     ) -> Option<(f64, [f64; 3])> {
-        let (kx, ky, kz) = (ray.kx, ray.ky, ray.kz);
-        let mut p = self.p.map(|v| {
+        let sheared = |v: Vec3| {
             let d = v.as_dvec3() - ray.origin;
-            DVec3::new(d[kx], d[ky], d[kz])
-        });
-        for q in &mut p {
-            q.x += ray.sx * q.z;
-            q.y += ray.sy * q.z;
-        }
-        let [p0, p1, p2] = p;
+            DVec3::new(ray.row_x.dot(d), ray.row_y.dot(d), ray.row_z.dot(d))
+        };
+        let (p0, p1, p2) = (sheared(self.p[0]), sheared(self.p[1]), sheared(self.p[2]));
         let e0 = p1.x * p2.y - p1.y * p2.x;
         let e1 = p2.x * p0.y - p2.y * p0.x;
         let e2 = p0.x * p1.y - p0.y * p1.x;

@@ -180,3 +180,42 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+    /// Passing over a group equals brute force over the other groups' triangles, for both
+    /// queries; groups come in runs (as a scene's primitives do) so whole subtrees share one.
+    #[test]
+    fn skipping_a_group_agrees_with_brute_force_over_the_rest(
+        pts in prop::collection::vec((-5.0f32..5.0, -5.0f32..5.0, -5.0f32..5.0), 3..300),
+        rays in prop::collection::vec(((-6.0f64..6.0, -6.0f64..6.0, -6.0f64..6.0),
+                                        (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0)), 20),
+        run in 1usize..40,
+        skip in 0u32..4,
+    ) {
+        let tris = random_tris(&pts);
+        let groups: Vec<u32> = (0..tris.len()).map(|i| (i / run) as u32 % 4).collect();
+        let bvh = Bvh::with_groups(tris.clone(), groups.clone());
+        let rest: Vec<Triangle> = tris
+            .iter()
+            .zip(&groups)
+            .filter(|(_, &g)| g != skip)
+            .map(|(t, _)| *t)
+            .collect();
+        let all = |_: u32| true;
+        for ((ox, oy, oz), (dx, dy, dz)) in rays {
+            let (o, d) = (DVec3::new(ox, oy, oz), DVec3::new(dx, dy, dz));
+            let brute = brute_nearest(&rest, o, d, 50.0);
+            let hit = bvh.nearest_hit_except(o, d, (0.0, 50.0), skip, &all);
+            prop_assert_eq!(hit.map(|h| h.t), brute);
+            if let Some(h) = hit {
+                prop_assert!(groups[h.triangle as usize] != skip);
+            }
+            prop_assert_eq!(bvh.occluded_except(o, d, (0.0, 50.0), skip, &all), brute.is_some());
+            // Skipping nothing is the plain query.
+            let plain = bvh.nearest(o, d, 0.0, 50.0);
+            let none = bvh.nearest_hit_except(o, d, (0.0, 50.0), illume_raytrace::NO_GROUP, &all);
+            prop_assert_eq!(none.map(|h| h.t), plain);
+        }
+    }
+}

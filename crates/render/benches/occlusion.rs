@@ -6,7 +6,8 @@
 //! the same shader told to skip the call. Prints the best of three wall times of each on one
 //! thread (the ratio is what the target is about; one thread keeps it stable on a shared
 //! machine), their ratio, and occlusion rays per second (16 per shaded point, counted as the
-//! frame's micropolygons: an estimate of the shaded points).
+//! frame's micropolygons: an estimate of the shaded points). On Linux it also prints the
+//! best CPU times and their ratio, steadier than wall times on a loaded machine.
 use illume_render::{render, RenderSettings};
 use illume_ri::{from_rib_diagnostic, Frame, Ri};
 use std::time::Instant;
@@ -52,34 +53,56 @@ fn frame(text: &str) -> Frame {
     ri.take_frames().remove(0)
 }
 
-/// Best of three wall times and the frame's micropolygons.
-fn time(frame: &Frame) -> (f64, u64) {
+/// The process's CPU time (user + system) in seconds from `/proc/self/stat`, where there is
+/// one: on a machine shared with other work the wall time swings with the load, the CPU time
+/// much less.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the parenthesised command name; utime and stime are the 12th and 13th.
+    let rest = stat.rsplit_once(')')?.1;
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// Best of three wall times, best of three CPU times (when known) and the frame's
+/// micropolygons.
+fn time(frame: &Frame) -> (f64, Option<f64>, u64) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .expect("a one-thread pool");
-    let mut best = f64::INFINITY;
+    let (mut best, mut best_cpu) = (f64::INFINITY, None::<f64>);
     let mut mps = 0;
     for _ in 0..3 {
-        let t = Instant::now();
+        let (t, c) = (Instant::now(), cpu_seconds());
         let r = pool.install(|| render(frame, &RenderSettings::default()));
         best = best.min(t.elapsed().as_secs_f64());
+        if let (Some(c0), Some(c1)) = (c, cpu_seconds()) {
+            best_cpu = Some(best_cpu.map_or(c1 - c0, |b| b.min(c1 - c0)));
+        }
         mps = r.stats.micropolygons;
     }
-    (best, mps)
+    (best, best_cpu, mps)
 }
 
 fn main() {
     let dir = std::env::temp_dir().join(format!("illume-bench-occlusion-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temporary shader directory");
     std::fs::write(dir.join("tao.sl"), SHADER).expect("the bench shader");
-    let (without, mps) = time(&frame(&rib(&dir, 0)));
-    let (with, _) = time(&frame(&rib(&dir, 1)));
+    let (without, without_cpu, mps) = time(&frame(&rib(&dir, 0)));
+    let (with, with_cpu, _) = time(&frame(&rib(&dir, 1)));
     let rays = mps as f64 * 16.0;
     println!("occlusion(P, N, 16), 256x256, 1 thread, best of 3");
     println!("without occlusion  {without:>8.3} s");
     println!("with occlusion     {with:>8.3} s");
     println!("ratio              {:>8.2}x", with / without);
+    if let (Some(a), Some(b)) = (without_cpu, with_cpu) {
+        println!(
+            "CPU time           {a:>8.2} s / {b:.2} s, ratio {:.2}x",
+            b / a.max(0.01)
+        );
+    }
     println!(
         "occlusion rays/s   {:>8.3e}  ({rays:.0} rays over the extra time)",
         rays / (with - without).max(1e-9)

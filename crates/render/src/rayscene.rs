@@ -3,10 +3,14 @@
 //! that casts shadows, split until diceable and diced at a coarse, bounded rate into
 //! triangles, in one BVH. Built once per frame, and only when some light needs it.
 //!
-//! The rate is view-dependent but bucket- and thread-independent: about one triangle edge per
-//! [`EDGE_PIXELS`] raster pixels, and at least one segment per [`MAX_TURN`] of the surface's
-//! turning (a caster small on screen can cast a large shadow: near a point light, or under
-//! grazing light), between [`MIN_SEGMENTS`] and [`MAX_SEGMENTS`] per side of a diceable piece. Each piece is diced at twice that rate so the half-way vertices measure how
+//! The rate is bucket- and thread-independent: at least one segment per [`MAX_TURN`] of the
+//! surface's turning (a caster small on screen can cast a large shadow: near a point light, or
+//! under grazing light), between [`MIN_SEGMENTS`] and [`MAX_SEGMENTS`] per side of a diceable
+//! piece; displaced primitives (and area-light geometry) also get about one triangle edge per
+//! [`EDGE_PIXELS`] raster pixels, as the displacement's detail is on the scale of the camera's
+//! dicing. Undisplaced ones do not: a flat or gently curved surface needs no more triangles
+//! for rays than its turning asks (PRMan's coarser "trace" dicing; a ground plane was 32k
+//! triangles and is now 128). Each piece is diced at twice that rate so the half-way vertices measure how
 //! far the triangles lie from the true surface (the chord's sagitta); the largest such distance
 //! of a primitive is the offset its own shadow rays start with, so a lit curved surface never
 //! shadows itself on the chords of its own tessellation.
@@ -21,9 +25,10 @@
 //! Not modelled: motion; area-light geometry is sampled undisplaced; the built-in lights'
 //! shadow rays see `"Os"`/`"shader"` casters as opaque (SL `transmission()` sees `1 − Os`).
 use crate::trace::hit::{hit_vertices, HitVertex};
+use crate::trace::shell::Shell;
 use glam::{DVec3, Vec3};
 use illume_geom::{Grid, Primitive};
-use illume_raytrace::{Bvh, Triangle};
+use illume_raytrace::{Bvh, Triangle, NO_GROUP};
 use illume_ri::{Attributes, Camera, Frame};
 use illume_shade::{AreaEmitter, Occlusion};
 use rayon::prelude::*;
@@ -35,10 +40,12 @@ const EDGE_PIXELS: f64 = 4.0;
 const MIN_SEGMENTS: usize = 8;
 const MAX_SEGMENTS: usize = 128;
 /// Largest turn of the tessellation's edge direction per segment, whatever the raster size:
-/// chords of a circle then stay within `1 − cos(MAX_TURN/2)` ≈ 3e-4 of its radius, so the
-/// shadow of a full disk covers 0.9996 of the circle (the 4 px rule alone gave a 5% smaller
-/// shadow for a disk ten times smaller on screen than its shadow).
-const MAX_TURN: f64 = std::f64::consts::TAU / 128.0;
+/// chords of a circle then stay within `1 − cos(MAX_TURN/2)` ≈ 1.2e-3 of its radius, so the
+/// shadow of a full disk covers 0.998 of the circle (the 4 px rule alone gave a 5% smaller
+/// shadow for a disk ten times smaller on screen than its shadow). 2π/64 rather than 2π/128:
+/// a sphere is 8k triangles instead of 33k, which halved the build of an `occlusion()` frame's
+/// ray scene (issue 19) for a shadow 0.1% smaller.
+const MAX_TURN: f64 = std::f64::consts::TAU / 64.0;
 /// Segments per side when the piece cannot be measured in raster space (behind the eye).
 const UNMEASURED_SEGMENTS: usize = 32;
 /// Area lights are sampled on a finer tessellation: its chords shrink the sampled shape.
@@ -76,6 +83,8 @@ pub(crate) struct PrimRays {
     /// The parametric step between tessellation vertices.
     pub du: f32,
     pub dv: f32,
+    /// Where its triangles lie: rays leaving it away from this cannot hit it.
+    pub shell: Shell,
 }
 
 impl Occlusion for RayScene {
@@ -87,7 +96,7 @@ impl Occlusion for RayScene {
 
 /// The per-primitive output of the build: triangles, their vertices' shading data, and what
 /// rays see of it.
-type PrimBuild = (Vec<Triangle>, Vec<[HitVertex; 3]>, PrimRays);
+type PrimBuild = (Vec<Triangle>, Vec<HitVertex>, Vec<[u32; 3]>, PrimRays);
 
 impl RayScene {
     /// Tessellates every primitive that rays can see: shadow casters (not area-light
@@ -111,24 +120,30 @@ impl RayScene {
                 displaced: false,
                 du: 0.0,
                 dv: 0.0,
+                shell: Shell::default(),
             };
-            let (mut tris, mut verts) = (Vec::new(), Vec::new());
+            let (mut tris, mut verts, mut corners) = (Vec::new(), Vec::new(), Vec::new());
             // Geometry that blocks no ray cannot shadow itself either: no offset needed.
             if !shadow && !rays.traced {
-                return (tris, verts, rays);
+                return (tris, verts, corners, rays);
             }
             let mut offset = 0.0f32;
-            for mut g in diced(fp.primitive.as_ref(), &frame.camera, MIN_SEGMENTS) {
+            let rate = Rate {
+                min_segments: MIN_SEGMENTS,
+                raster: a.displacement.is_some(),
+            };
+            for mut g in diced(fp.primitive.as_ref(), &frame.camera, rate) {
                 if let Some(p) = displaced(index, &g) {
                     g.p = p;
                     rays.displaced = true;
                 }
                 (rays.du, rays.dv) = (2.0 * g.du, 2.0 * g.dv);
                 offset = offset.max(triangles(&g, &mut tris));
-                hit_vertices(&g, a, &mut verts);
+                hit_vertices(&g, a, &mut verts, &mut corners);
             }
             rays.offset = offset * OFFSET_MARGIN;
-            (tris, verts, rays)
+            rays.shell = Shell::of(&tris);
+            (tris, verts, corners, rays)
         };
         let per_prim: Vec<PrimBuild> = if parallel {
             frame.primitives.par_iter().enumerate().map(one).collect()
@@ -144,17 +159,19 @@ impl RayScene {
             partial_casters: false,
         };
         let mut all = Vec::new();
-        for (index, (tris, verts, rays)) in per_prim.into_iter().enumerate() {
-            for (t, v) in tris.into_iter().zip(verts) {
-                let base = scene.verts.len() as u32;
-                scene.verts.extend(v);
-                scene.tri_verts.push([base, base + 1, base + 2]);
+        let mut groups = Vec::new();
+        for (index, (tris, verts, corners, rays)) in per_prim.into_iter().enumerate() {
+            let base = scene.verts.len() as u32;
+            scene.verts.extend(verts);
+            for (t, c) in tris.into_iter().zip(corners) {
+                scene.tri_verts.push(c.map(|k| base + k));
                 scene.tri_prim.push(index as u32);
                 all.push(t);
+                groups.push(index as u32);
             }
             scene.prims.push(rays);
         }
-        scene.bvh = Bvh::new(all);
+        scene.bvh = Bvh::with_groups(all, groups);
         scene.partial_casters = scene.prims.iter().any(|p| p.shadow && p.shadow_os);
         scene
     }
@@ -162,6 +179,15 @@ impl RayScene {
     /// The shadow-ray offset for grids of frame primitive `prim`.
     pub fn offset(&self, prim: usize) -> f32 {
         self.prims.get(prim).map_or(0.0, |p| p.offset)
+    }
+
+    /// The BVH group a ray from `origin` along `dir`, leaving primitive `prim`, can pass over:
+    /// `prim` itself when its shell shows the ray cannot meet it again, else none.
+    pub fn skip(&self, prim: usize, origin: DVec3, dir: DVec3) -> u32 {
+        match self.prims.get(prim) {
+            Some(p) if p.shell.excludes(origin, dir) => prim as u32,
+            _ => NO_GROUP,
+        }
     }
 
     /// Whether any shadow caster is partly transparent to shadow rays (`"Os"`/`"shader"`).
@@ -201,7 +227,11 @@ pub(crate) fn emitter(frame: &Frame, light: usize) -> AreaEmitter {
             continue;
         }
         let flip = fp.normal_sign();
-        for g in diced(fp.primitive.as_ref(), &frame.camera, MIN_EMITTER_SEGMENTS) {
+        let rate = Rate {
+            min_segments: MIN_EMITTER_SEGMENTS,
+            raster: true,
+        };
+        for g in diced(fp.primitive.as_ref(), &frame.camera, rate) {
             // Every other vertex: the coarse grid (the fine one only measures chord error).
             let (nu, nv) = (g.nu.div_ceil(2), g.nv.div_ceil(2));
             let p: Vec<Vec3> = (0..nv)
@@ -214,34 +244,37 @@ pub(crate) fn emitter(frame: &Frame, light: usize) -> AreaEmitter {
     e
 }
 
+/// How finely a primitive is diced for rays.
+#[derive(Clone, Copy, Debug)]
+struct Rate {
+    /// Fewest segments per side of a diceable piece.
+    min_segments: usize,
+    /// Also about one edge per [`EDGE_PIXELS`] raster pixels.
+    raster: bool,
+}
+
 /// The primitive split until diceable, each piece diced at twice its ray-tracing rate
 /// (`2·segments + 1` vertices per side).
-fn diced(prim: &dyn Primitive, camera: &Camera, min_segments: usize) -> Vec<Grid> {
+fn diced(prim: &dyn Primitive, camera: &Camera, rate: Rate) -> Vec<Grid> {
     let mut out = Vec::new();
-    dice_into(prim, camera, min_segments, 0, &mut out);
+    dice_into(prim, camera, rate, 0, &mut out);
     out
 }
 
-fn dice_into(
-    prim: &dyn Primitive,
-    camera: &Camera,
-    min_segments: usize,
-    depth: u32,
-    out: &mut Vec<Grid>,
-) {
+fn dice_into(prim: &dyn Primitive, camera: &Camera, rate: Rate, depth: u32, out: &mut Vec<Grid>) {
     if prim.bound().is_empty() {
         return;
     }
     if !prim.diceable() && depth < MAX_SPLIT_DEPTH {
         for child in prim.split() {
-            dice_into(child.as_ref(), camera, min_segments, depth + 1, out);
+            dice_into(child.as_ref(), camera, rate, depth + 1, out);
         }
         return;
     }
     if !prim.diceable() {
         return;
     }
-    let (su, sv) = segments(prim, camera, min_segments);
+    let (su, sv) = segments(prim, camera, rate);
     let g = prim.dice(2 * su + 1, 2 * sv + 1);
     if g.nu >= 3 && g.nv >= 3 && g.p.len() == g.nu * g.nv && g.nu % 2 == 1 && g.nv % 2 == 1 {
         out.push(g);
@@ -252,9 +285,10 @@ fn dice_into(
 const TEST: usize = 5;
 
 /// Triangle segments per side: the longer of the raster rule (the longest row/column of a
-/// coarse test dice over [`EDGE_PIXELS`]) and the turning rule (its largest turning over
-/// [`MAX_TURN`]), clamped.
-fn segments(prim: &dyn Primitive, camera: &Camera, min_segments: usize) -> (usize, usize) {
+/// coarse test dice over [`EDGE_PIXELS`]; only when `rate.raster`) and the turning rule (its
+/// largest turning over [`MAX_TURN`]), clamped.
+fn segments(prim: &dyn Primitive, camera: &Camera, rate: Rate) -> (usize, usize) {
+    let min_segments = rate.min_segments;
     let g = prim.dice(TEST, TEST);
     if g.p.len() != TEST * TEST {
         return (UNMEASURED_SEGMENTS, UNMEASURED_SEGMENTS);
@@ -262,6 +296,10 @@ fn segments(prim: &dyn Primitive, camera: &Camera, min_segments: usize) -> (usiz
     let p_camera: Vec<DVec3> = g.p.iter().map(|p| p.as_dvec3()).collect();
     let (tu, tv) = turning(&p_camera);
     let by_turn = |t: f64| (t / MAX_TURN).ceil();
+    if !rate.raster {
+        let n = |t: f64| (by_turn(t) as usize).clamp(min_segments, MAX_SEGMENTS);
+        return (n(tu), n(tv));
+    }
     let raster: Option<Vec<DVec3>> = p_camera
         .iter()
         .map(|&p| camera.raster_from_camera(p))

@@ -21,12 +21,44 @@ pub struct TraceHit {
 }
 
 /// Where a ray leaves from: the shaded point, its geometric normal and the frame primitive it
-/// belongs to (for that primitive's ray offset).
+/// belongs to (for that primitive's ray offset), and the beam around the ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RayStart {
     pub p: Vec3,
     pub ng: Vec3,
     pub primitive: usize,
+    pub beam: RayDifferential,
+}
+
+/// A ray's differentials (Igehy, "Tracing Ray Differentials", SIGGRAPH 1999; pbrt-v4's
+/// `RayDifferential`): how its origin and unit direction change from the shaded point to its
+/// two grid neighbours. Carried to a hit, they give the footprint the hit is shaded over, so
+/// a texture lookup there is filtered over what the beam covers. All zero: no beam.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RayDifferential {
+    pub dp: [Vec3; 2],
+    pub dd: [Vec3; 2],
+}
+
+impl RayDifferential {
+    pub fn is_none(&self) -> bool {
+        self.dp == [Vec3::ZERO; 2] && self.dd == [Vec3::ZERO; 2]
+    }
+
+    /// The two offsets of the hit point for a ray along the unit `dir` hitting a surface
+    /// with normal `n` at distance `t` (Igehy's transfer: the offset rays meet the hit's
+    /// tangent plane); `None` when the ray grazes that plane.
+    pub fn transfer(&self, dir: DVec3, t: f64, n: DVec3) -> Option<[DVec3; 2]> {
+        let dn = dir.dot(n);
+        if dn.abs() < 1e-9 || !t.is_finite() {
+            return None;
+        }
+        let at = |k: usize| {
+            let d = self.dp[k].as_dvec3() + self.dd[k].as_dvec3() * t;
+            d - dir * (d.dot(n) / dn)
+        };
+        Some([at(0), at(1)])
+    }
 }
 
 /// The renderer's ray tracer. Implementations must be deterministic: the answer depends on
@@ -80,6 +112,30 @@ fn orthonormal(n: DVec3) -> (DVec3, DVec3) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_parallel_beam_keeps_its_width_and_a_spreading_one_grows_with_distance() {
+        // Rays along +z from (0,0,0) and its neighbours 0.1 away, onto the plane z = t.
+        let beam = RayDifferential {
+            dp: [Vec3::new(0.1, 0.0, 0.0), Vec3::new(0.0, 0.1, 0.0)],
+            dd: [Vec3::ZERO; 2],
+        };
+        let [dx, dy] = beam.transfer(DVec3::Z, 5.0, DVec3::NEG_Z).unwrap();
+        assert!((dx - DVec3::new(0.1, 0.0, 0.0)).length() < 1e-7);
+        assert!((dy - DVec3::new(0.0, 0.1, 0.0)).length() < 1e-7);
+        // Spreading by 0.01 per unit length: 0.1 + 0.01·t wide at t; a plane tilted by 45°
+        // about y stretches the x offset by √2 (the beam meets it obliquely).
+        let spread = RayDifferential {
+            dd: [Vec3::new(0.01, 0.0, 0.0), Vec3::ZERO],
+            ..beam
+        };
+        let [dx, _] = spread.transfer(DVec3::Z, 10.0, DVec3::NEG_Z).unwrap();
+        assert!((dx.x - 0.2).abs() < 1e-7);
+        let n = DVec3::new(1.0, 0.0, -1.0).normalize();
+        let [dx, _] = spread.transfer(DVec3::Z, 10.0, n).unwrap();
+        assert!((dx.length() - 0.2 * 2f64.sqrt()).abs() < 1e-6);
+        assert!(spread.transfer(DVec3::Z, 1.0, DVec3::X).is_none());
+    }
 
     #[test]
     fn cosine_directions_stay_in_the_hemisphere_and_average_two_thirds() {

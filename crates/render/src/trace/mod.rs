@@ -15,12 +15,13 @@
 //! sequentially (it may happen inside a shading task, where waiting on rayon work could
 //! deadlock on the once-cell).
 pub(crate) mod hit;
+pub(crate) mod shell;
 mod volume;
 
 use crate::rayscene::RayScene;
 use crate::shading::FrameShading;
 use glam::{DVec3, Vec3};
-use illume_shade::{RayStart, RayTracer, TraceHit};
+use illume_shade::{RayDifferential, RayStart, RayTracer, TraceHit};
 
 /// Surfaces composited along one `trace()` ray before it counts as opaque.
 const MAX_LAYERS: usize = 16;
@@ -52,10 +53,20 @@ impl RayTracer for FrameShading<'_> {
         let scene = self.ray_scene();
         let origin = self.ray_origin(scene, from, dir);
         let keep = |id: u32| scene.prim_of(id).traced;
-        let first = scene
-            .bvh()
-            .nearest_hit(origin, dir, 0.0, f64::INFINITY, &keep)?;
-        let (grid, _) = hit::hit_grid(scene, &first, origin, dir);
+        let skip = scene.skip(from.primitive, origin, dir);
+        let nearest = |t_min: f64| {
+            scene
+                .bvh()
+                .nearest_hit_except(origin, dir, (t_min, f64::INFINITY), skip, &keep)
+        };
+        let Some(first) = nearest(0.0) else {
+            return if shade {
+                self.missed_ray_volume(scene, from, dir, depth)
+            } else {
+                None
+            };
+        };
+        let (grid, _) = hit::hit_grid(scene, &first, origin, dir, &RayDifferential::default());
         let flip = |prim: usize| {
             self.frame
                 .primitives
@@ -76,7 +87,7 @@ impl RayTracer for FrameShading<'_> {
         let mut through = Vec3::ONE;
         let mut hit = first;
         for _ in 0..MAX_LAYERS {
-            let (grid, prim) = hit::hit_grid(scene, &hit, origin, dir);
+            let (grid, prim) = hit::hit_grid(scene, &hit, origin, dir, &from.beam);
             let Some(attrs) = scene.prim(prim).and_then(|p| p.attributes.clone()) else {
                 break;
             };
@@ -87,10 +98,7 @@ impl RayTracer for FrameShading<'_> {
             if through.max_element() < OPAQUE {
                 break;
             }
-            match scene
-                .bvh()
-                .nearest_hit(origin, dir, Self::past(hit.t), f64::INFINITY, &keep)
-            {
+            match nearest(Self::past(hit.t)) {
                 Some(next) => hit = next,
                 None => break,
             }
@@ -109,7 +117,11 @@ impl RayTracer for FrameShading<'_> {
             let p = scene.prim_of(id);
             p.shadow && !p.shadow_os
         };
-        if scene.bvh().occluded_by(origin, dir, 0.0, t_max, &opaque) {
+        let skip = scene.skip(from.primitive, origin, dir);
+        if scene
+            .bvh()
+            .occluded_except(origin, dir, (0.0, t_max), skip, &opaque)
+        {
             return Vec3::ZERO;
         }
         if !scene.has_partial_casters() {
@@ -122,7 +134,11 @@ impl RayTracer for FrameShading<'_> {
         let mut through = Vec3::ONE;
         let mut t_min = 0.0;
         // Each surface crossed is found once: at most one step per triangle on the segment.
-        while let Some(hit) = scene.bvh().nearest_hit(origin, dir, t_min, t_max, &keep) {
+        while let Some(hit) =
+            scene
+                .bvh()
+                .nearest_hit_except(origin, dir, (t_min, t_max), skip, &keep)
+        {
             let os = hit::hit_opacity(scene, &hit).clamp(Vec3::ZERO, Vec3::ONE);
             through *= Vec3::ONE - os;
             if through.max_element() < OPAQUE {

@@ -13,7 +13,7 @@ use super::{fl, st, tr, Args};
 use crate::exec::Exec;
 use crate::value::{Mask, Slot, Value};
 use glam::{DVec3, Vec3};
-use illume_shade::{cosine_direction, segment, RayStart, RayTracer};
+use illume_shade::{cosine_direction, segment, RayDifferential, RayStart, RayTracer};
 use illume_sl::ast::{BuiltinId as B, Expr};
 use illume_sl::types::BaseType;
 
@@ -33,7 +33,7 @@ impl Exec<'_> {
             (B::Trace, 2) => {
                 let (p, r) = (tr(&a[0]), tr(&a[1]));
                 self.per_point(mask, Vec3::ZERO, |x, i, t| {
-                    x.trace_colour(t, i, *p.at(i), *r.at(i))
+                    x.trace_colour(t, i, *p.at(i), *r.at(i), x.beam(i, &p, &r))
                 })
             }
             (B::Visibility | B::Transmission, 2) => {
@@ -66,7 +66,9 @@ impl Exec<'_> {
                 self.write_back(&e[3], &triples(&hits, n, |h| h.1), mask);
                 self.write_back(&e[4], &triples(&hits, n, |h| h.2), mask);
                 // The ray that missed everything: this one, when it missed (one bounce).
-                let miss = |i: usize, v: Vec3| if hits[i].is_some() { Vec3::ZERO } else { v };
+                // (A miss can still bring back the colour of the volume it crossed: `t` ∞.)
+                let missed = |i: usize| hits[i].is_none_or(|h| h.0 >= NO_HIT);
+                let miss = |i: usize, v: Vec3| if missed(i) { v } else { Vec3::ZERO };
                 let pm = (0..n).map(|i| miss(i, *p.at(i))).collect();
                 let rm = (0..n)
                     .map(|i| miss(i, r.at(i).normalize_or_zero()))
@@ -119,16 +121,41 @@ impl Exec<'_> {
             p,
             ng: self.grid.ng.get(i).copied().unwrap_or(Vec3::ZERO),
             primitive: self.env.primitive,
+            beam: RayDifferential::default(),
         }
     }
 
-    /// The colour seen along `r` from `p`; black at the maximum depth.
-    fn trace_colour(&self, t: &dyn RayTracer, i: usize, p: Vec3, r: Vec3) -> Vec3 {
+    /// The differentials of the ray from `p` along `r` at grid point `i`: the change of the
+    /// origin and of the unit direction to its neighbours along u and v (grid differences,
+    /// as `Du`/`Dv` take them).
+    fn beam(&self, i: usize, p: &Slot<Vec3>, r: &Slot<Vec3>) -> RayDifferential {
+        let [a, b, c, _] = self.grid.footprint(i);
+        let unit = |k: usize| r.at(k).normalize_or_zero();
+        RayDifferential {
+            dp: [*p.at(b) - *p.at(a), *p.at(c) - *p.at(a)],
+            dd: [unit(b) - unit(a), unit(c) - unit(a)],
+        }
+    }
+
+    /// The colour seen along `r` from `p` (with the ray's differentials `beam`); black at the
+    /// maximum depth.
+    fn trace_colour(
+        &self,
+        t: &dyn RayTracer,
+        i: usize,
+        p: Vec3,
+        r: Vec3,
+        beam: RayDifferential,
+    ) -> Vec3 {
         let dir = r.as_dvec3().normalize_or_zero();
         if dir == DVec3::ZERO || self.env.ray_depth >= t.max_depth() {
             return Vec3::ZERO;
         }
-        t.trace(&self.ray_start(i, p), dir, self.env.ray_depth, true)
+        let start = RayStart {
+            beam,
+            ..self.ray_start(i, p)
+        };
+        t.trace(&start, dir, self.env.ray_depth, true)
             .map_or(Vec3::ZERO, |h| h.ci)
     }
 
@@ -238,7 +265,7 @@ impl Exec<'_> {
         samples: f32,
         blur: f32,
     ) -> Vec<Vec3> {
-        let p = match self.global(illume_sl::ast::Global::P) {
+        let pslot = match self.global(illume_sl::ast::Global::P) {
             Value::Triple(s) => s.clone(),
             _ => Slot::Uniform(Vec3::ZERO),
         };
@@ -261,16 +288,18 @@ impl Exec<'_> {
                 if !mask.get(i) {
                     return Vec3::ZERO;
                 }
-                let (p, r) = (*p.at(i), *r.at(i));
+                let beam = || self.beam(i, &pslot, r);
+                let (p, r) = (*pslot.at(i), *r.at(i));
                 if blur == 0.0 {
-                    return self.trace_colour(t, i, p, r);
+                    return self.trace_colour(t, i, p, r, beam());
                 }
                 let axis = r.as_dvec3().normalize_or_zero();
                 let mut sum = DVec3::ZERO;
                 for k in 0..count {
                     let u = illume_shade::stratified_sample(p, k, count, stream);
                     let d = cone_direction(axis, blur, u);
-                    sum += self.trace_colour(t, i, p, d.as_vec3()).as_dvec3();
+                    let none = RayDifferential::default();
+                    sum += self.trace_colour(t, i, p, d.as_vec3(), none).as_dvec3();
                 }
                 (sum / f64::from(count)).as_vec3()
             })
@@ -297,7 +326,8 @@ impl Exec<'_> {
                 }
                 let shade = shade && self.env.ray_depth < t.max_depth();
                 let h = t.trace(&self.ray_start(i, *p.at(i)), dir, self.env.ray_depth, shade)?;
-                Some((h.t as f32, h.p, h.n, h.ci))
+                let dist = if h.t.is_finite() { h.t as f32 } else { NO_HIT };
+                Some((dist, h.p, h.n, h.ci))
             })
             .collect()
     }
