@@ -232,14 +232,15 @@ impl TiledExr {
         let mut sorted = offsets.clone();
         sorted.sort_unstable();
         sorted.push(len);
-        // A chunk runs to the next chunk or the end of the file; an offset past the end (a
-        // corrupt table) has no bytes, so it reads as a missing tile instead of a huge buffer.
+        // A chunk runs to the next chunk or the end of the file, whichever comes first (the
+        // next offset of a corrupt table may lie far past the end); an offset past the end has
+        // no bytes, so it reads as a missing tile instead of a huge buffer.
         let length_of = |o: u64| -> usize {
             if o >= len {
                 return 0;
             }
             let i = sorted.partition_point(|&x| x <= o);
-            (sorted[i.min(sorted.len() - 1)].saturating_sub(o)) as usize
+            (sorted[i.min(sorted.len() - 1)].min(len) - o) as usize
         };
         let tile = (desc.tile_size.0, desc.tile_size.1);
         let nlevels = match desc.level_mode {
@@ -388,6 +389,13 @@ impl TiledExr {
             .iter()
             .all(|(_, t)| matches!(t, SampleType::F16));
         let data = &block.data;
+        // The tile's size comes from the header: check the texels it claims against the bytes
+        // the tile holds before allocating them (a corrupt tile size aborted here).
+        let texel_bytes: usize = self.channels.iter().map(|(_, t)| t.bytes_per_sample()).sum();
+        tw.checked_mul(th)
+            .and_then(|n| n.checked_mul(texel_bytes))
+            .filter(|&n| texel_bytes > 0 && n <= data.len())
+            .ok_or_else(short)?;
         if all_half {
             // Scan lines hold each channel's row in turn; the cache wants texels interleaved.
             let mut out = vec![f16::ZERO; tw * th * nch];
