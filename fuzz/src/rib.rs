@@ -31,7 +31,10 @@ pub fn parse_rib(data: &[u8]) {
     for r in &back {
         illume_rib::write_ascii(r, &mut again).unwrap();
     }
-    assert_eq!(String::from_utf8_lossy(&again), String::from_utf8_lossy(&text));
+    assert_eq!(
+        String::from_utf8_lossy(&again),
+        String::from_utf8_lossy(&text)
+    );
 }
 
 /// Applies [`render_rib`]'s limits to one request (`None`: drop it).

@@ -82,29 +82,28 @@ pub fn txmake(data: &[u8]) {
     let opts = make_options(op);
     let _ = std::fs::remove_file(&out);
     let magic = illume_imageio::ZFILE_MAGIC;
-    let built = if picture.starts_with(&magic.to_le_bytes())
-        || picture.starts_with(&magic.to_be_bytes())
-    {
-        let Ok((depth, matrices)) = illume_imageio::read_zfile(&input) else {
-            return;
-        };
-        if depth.width > 64 || depth.height > 64 {
-            return;
-        }
-        make_shadow(&depth, &matrices, &out, &opts)
-    } else {
-        let Ok(img) = illume_imageio::read_image(&input) else {
-            return;
-        };
-        if img.width > 64 || img.height > 64 {
-            return;
-        }
-        if op & 0x40 != 0 {
-            make_latlong_environment(&img, &out, &opts)
+    let built =
+        if picture.starts_with(&magic.to_le_bytes()) || picture.starts_with(&magic.to_be_bytes()) {
+            let Ok((depth, matrices)) = illume_imageio::read_zfile(&input) else {
+                return;
+            };
+            if depth.width > 64 || depth.height > 64 {
+                return;
+            }
+            make_shadow(&depth, &matrices, &out, &opts)
         } else {
-            make_texture(&img, &out, &opts)
-        }
-    };
+            let Ok(img) = illume_imageio::read_image(&input) else {
+                return;
+            };
+            if img.width > 64 || img.height > 64 {
+                return;
+            }
+            if op & 0x40 != 0 {
+                make_latlong_environment(&img, &out, &opts)
+            } else {
+                make_texture(&img, &out, &opts)
+            }
+        };
     if built.is_ok() {
         // What txmake wrote must open again.
         let cache = TextureCache::new(1 << 20);

@@ -149,7 +149,13 @@ fn read_texture() {
         .map(|(name, tx)| (name, [&LOOKUP[..], &tx].concat()))
         .collect();
     let crashes = regressions("crates/texture", "tx_");
-    smoke("read_texture", illume_fuzz::read_texture, &seeds, &crashes, 1500);
+    smoke(
+        "read_texture",
+        illume_fuzz::read_texture,
+        &seeds,
+        &crashes,
+        1500,
+    );
 }
 
 #[test]
@@ -177,7 +183,13 @@ fn txmake() {
 #[test]
 fn sl_preprocess() {
     let seeds = seeds::shaders(1 << 10);
-    smoke("sl_preprocess", illume_fuzz::sl_preprocess, &seeds, &[], 3000);
+    smoke(
+        "sl_preprocess",
+        illume_fuzz::sl_preprocess,
+        &seeds,
+        &[],
+        3000,
+    );
 }
 
 #[test]

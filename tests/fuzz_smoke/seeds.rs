@@ -119,7 +119,9 @@ pub struct Pictures {
 
 impl Pictures {
     pub fn new(tag: &str) -> Self {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fuzz_smoke").join(tag);
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join("fuzz_smoke")
+            .join(tag);
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).expect("scratch dir");
         Pictures { dir }
@@ -130,7 +132,10 @@ impl Pictures {
         let depth = depth_matrices();
         write_display(&path, kind, img, q, Some(&depth))
             .unwrap_or_else(|e| panic!("writing seed {name}: {e}"));
-        (name.to_string(), std::fs::read(&path).expect("seed written"))
+        (
+            name.to_string(),
+            std::fs::read(&path).expect("seed written"),
+        )
     }
 
     /// TIFF seeds: 8-bit, 16-bit and float from our writer, and the repository's textures.
@@ -142,7 +147,12 @@ impl Pictures {
             dither: 0.0,
         };
         let mut out = vec![
-            self.display("rgba8.tif", "tiff", &picture(5, 3, "rgba"), Quantize::default()),
+            self.display(
+                "rgba8.tif",
+                "tiff",
+                &picture(5, 3, "rgba"),
+                Quantize::default(),
+            ),
             self.display("rgb16.tif", "tiff", &picture(3, 4, "rgb"), sixteen),
             self.display("float.tif", "tiff", &picture(4, 2, "rgba"), Quantize::FLOAT),
         ];
@@ -158,15 +168,30 @@ impl Pictures {
             dither: 0.0,
         };
         vec![
-            self.display("rgba8.png", "png", &picture(5, 3, "rgba"), Quantize::default()),
+            self.display(
+                "rgba8.png",
+                "png",
+                &picture(5, 3, "rgba"),
+                Quantize::default(),
+            ),
             self.display("rgb16.png", "png", &picture(3, 4, "rgb"), sixteen),
         ]
     }
 
     pub fn exrs(&self) -> Vec<Seed> {
         vec![
-            self.display("rgba.exr", "openexr", &picture(5, 3, "rgba"), Quantize::FLOAT),
-            self.display("rgbaz.exr", "openexr", &picture(2, 3, "rgbaz"), Quantize::FLOAT),
+            self.display(
+                "rgba.exr",
+                "openexr",
+                &picture(5, 3, "rgba"),
+                Quantize::FLOAT,
+            ),
+            self.display(
+                "rgbaz.exr",
+                "openexr",
+                &picture(2, 3, "rgbaz"),
+                Quantize::FLOAT,
+            ),
         ]
     }
 
@@ -193,8 +218,14 @@ impl Pictures {
         vec![
             build("half.tx", make_texture(&img, &at("half.tx"), &opts)),
             build("float.tx", make_texture(&img, &at("float.tx"), &float)),
-            build("env.tx", make_latlong_environment(&img, &at("env.tx"), &opts)),
-            build("shadow.sm", make_shadow(&depth, &depth_matrices(), &at("shadow.sm"), &opts)),
+            build(
+                "env.tx",
+                make_latlong_environment(&img, &at("env.tx"), &opts),
+            ),
+            build(
+                "shadow.sm",
+                make_shadow(&depth, &depth_matrices(), &at("shadow.sm"), &opts),
+            ),
         ]
     }
 }

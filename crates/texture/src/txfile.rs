@@ -391,7 +391,11 @@ impl TiledExr {
         let data = &block.data;
         // The tile's size comes from the header: check the texels it claims against the bytes
         // the tile holds before allocating them (a corrupt tile size aborted here).
-        let texel_bytes: usize = self.channels.iter().map(|(_, t)| t.bytes_per_sample()).sum();
+        let texel_bytes: usize = self
+            .channels
+            .iter()
+            .map(|(_, t)| t.bytes_per_sample())
+            .sum();
         tw.checked_mul(th)
             .and_then(|n| n.checked_mul(texel_bytes))
             .filter(|&n| texel_bytes > 0 && n <= data.len())
