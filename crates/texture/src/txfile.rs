@@ -382,6 +382,19 @@ impl TiledExr {
             ))
         })?;
         let (tw, th) = (block.index.pixel_size.0, block.index.pixel_size.1);
+        // The chunk names its own tile: a corrupt table can point at another tile's chunk,
+        // whose size the cache (which indexes by the requested tile) would misread.
+        let (lw, lh) = self.levels[level];
+        let expected = (
+            self.tile.0.min(lw.saturating_sub(tx * self.tile.0)),
+            self.tile.1.min(lh.saturating_sub(ty * self.tile.1)),
+        );
+        if (tw, th) != expected {
+            return Err(fmt(format!(
+                "tile ({tx},{ty}) of level {level}: expected {}×{} texels, the chunk holds {tw}×{th}",
+                expected.0, expected.1
+            )));
+        }
         let nch = self.channels.len();
         let short = || fmt("short tile".into());
         let all_half = self
