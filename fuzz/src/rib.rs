@@ -41,8 +41,9 @@ pub fn parse_rib(data: &[u8]) {
 fn clamp(mut req: Spanned<Request>) -> Option<Spanned<Request>> {
     match &mut req.value {
         Request::Format { xres, yres, .. } => {
-            *xres = (*xres).min(24);
-            *yres = (*yres).min(24);
+            // Not `min`: a non-positive size means the device default, 640×480.
+            *xres = (*xres).clamp(1, 24);
+            *yres = (*yres).clamp(1, 24);
         }
         Request::PixelSamples { x, y } => {
             *x = x.min(2.0);
@@ -73,7 +74,7 @@ const DEFAULTS: &str = "Format 16 12 1\nPixelSamples 1 1\nShadingRate 4\n";
 /// standard shaders, sampling and filtering. The displays are not written.
 ///
 /// So that each input renders in well under a second, the target (not the renderer) clamps
-/// what the RIB may ask for: `Format` to at most 24×24, `PixelSamples` to at most 2×2 and
+/// what the RIB may ask for: `Format` to 1×1 to 24×24, `PixelSamples` to at most 2×2 and
 /// `ShadingRate` to at least 1, with a 16×12, 1×1, rate-4 default prepended. `RunProgram`
 /// procedurals are dropped (they would run arbitrary programs named by the input), `Make*`
 /// requests build nothing, and archives read from disk are capped at 64 KiB and clamped the

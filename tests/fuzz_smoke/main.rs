@@ -110,7 +110,19 @@ fn parse_rib() {
 #[test]
 fn render_rib() {
     let seeds = seeds::ribs(2 << 10);
-    smoke("render_rib", illume_fuzz::render_rib, &seeds, &[], 300);
+    // The target's own bug, found by render_rib: `Format 0 …` (the device default, 640×480)
+    // slipped past a `min(24)` clamp and tripped the frame-size assertion.
+    let format_zero = (
+        "Format 0".to_string(),
+        b"Format 0 240 1\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\n".to_vec(),
+    );
+    smoke(
+        "render_rib",
+        illume_fuzz::render_rib,
+        &seeds,
+        &[format_zero],
+        300,
+    );
 }
 
 #[test]
