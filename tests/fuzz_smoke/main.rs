@@ -141,7 +141,8 @@ fn read_png() {
 #[test]
 fn read_exr() {
     let seeds = Pictures::new("exr").exrs();
-    smoke("read_exr", illume_fuzz::read_exr, &seeds, &[], 2000);
+    let crashes = regressions("crates/imageio", "exr_");
+    smoke("read_exr", illume_fuzz::read_exr, &seeds, &crashes, 2000);
 }
 
 #[test]
@@ -185,7 +186,9 @@ fn txmake() {
         .zip(ops.iter().cycle())
         .map(|((name, bytes), &op)| (format!("{op:#04x} {name}"), [&[op][..], bytes].concat()))
         .collect();
-    let crashes: Vec<Seed> = regressions("crates/imageio", "tiff_")
+    let mut pictures = regressions("crates/imageio", "tiff_");
+    pictures.extend(regressions("crates/imageio", "exr_"));
+    let crashes: Vec<Seed> = pictures
         .into_iter()
         .map(|(name, bytes)| (name, [&[0][..], &bytes].concat()))
         .collect();

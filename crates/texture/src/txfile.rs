@@ -376,7 +376,12 @@ impl TiledExr {
             })?;
         let chunk = Chunk::read(&mut Cursor::new(bytes), &self.meta)
             .map_err(|e| fmt(format!("bad tile ({tx},{ty}) level {level}: {e}")))?;
-        let block = UncompressedBlock::decompress_chunk(chunk, &self.meta, false).map_err(|e| {
+        // The exr crate's decoders can panic on corrupt data (B44 under overflow checks).
+        let block = std::panic::catch_unwind(|| {
+            UncompressedBlock::decompress_chunk(chunk, &self.meta, false)
+        })
+        .unwrap_or_else(|_| Err(exr::error::Error::Invalid("corrupt compressed data".into())))
+        .map_err(|e| {
             fmt(format!(
                 "cannot decompress tile ({tx},{ty}) level {level}: {e}"
             ))
