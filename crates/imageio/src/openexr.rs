@@ -114,14 +114,21 @@ pub(crate) fn read_exr(path: &Path) -> std::result::Result<Image, ImageError> {
         size.1 as u64,
         header.channels.list.len() as u64,
     )?;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .map_err(|e| format_error(path, format!("OpenEXR: {e}")))?;
+    // Decoded on this thread and behind `catch_unwind`: the exr crate's decoders can panic on
+    // corrupt data (B44 subtracts with overflow under overflow checks, found by fuzzing), and a
+    // panic in its decoder thread pool aborts the process; here it becomes an error.
+    let decoded = std::panic::catch_unwind(|| {
+        read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .non_parallel()
+            .from_file(path)
+    })
+    .map_err(|_| format_error(path, "OpenEXR: the decoder failed on corrupt pixel data"))?;
+    let image = decoded.map_err(|e| format_error(path, format!("OpenEXR: {e}")))?;
     let layer = image.layer_data;
     let (w, h) = (layer.size.0, layer.size.1);
     let mut channels: Vec<(String, &FlatSamples)> = layer

@@ -86,6 +86,9 @@ pub(crate) struct Lexer<R> {
     /// Every comment record (`##` structural: true), when asked for (`RiReadArchive` callbacks).
     pub(crate) comments: Option<Vec<(bool, String)>>,
     pub(crate) io_error: Option<io::Error>,
+    /// Errors leave out the source line: the parser is skipping to the next request and drops
+    /// them, and copying the line for every garbage byte cost half the parse of a corrupt file.
+    pub(crate) quiet: bool,
     /// Binary request definitions (0314): code → request name.
     requests: HashMap<u8, Arc<str>>,
     /// Binary string definitions (0315/0316): token → string.
@@ -184,6 +187,7 @@ impl<R: Read> Lexer<R> {
             in_comment: false,
             comments: None,
             io_error: None,
+            quiet: false,
             requests: HashMap::new(),
             strings: HashMap::new(),
         }
@@ -210,12 +214,9 @@ impl<R: Read> Lexer<R> {
             return String::new();
         }
         let rest = &self.buf[start..];
-        let rest = &rest[..rest.len().min(400)];
-        let end = rest
-            .iter()
-            .position(|&b| b == b'\n')
-            .unwrap_or(rest.len())
-            .min(200);
+        // At most 200 bytes are shown: a newline further on changes nothing.
+        let rest = &rest[..rest.len().min(200)];
+        let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
         let text = &rest[..end];
         let control = |b: u8| (b < 0x20 && b != b'\t' && b != b'\r') || b == 0x7f;
         if text.iter().any(|&b| control(b)) || std::str::from_utf8(text).is_err() {
@@ -231,7 +232,11 @@ impl<R: Read> Lexer<R> {
         LexError {
             pos,
             message: message.into(),
-            source_line: self.current_line(),
+            source_line: if self.quiet {
+                String::new()
+            } else {
+                self.current_line()
+            },
         }
     }
 

@@ -99,10 +99,12 @@ impl<R: Read> Parser<R> {
 
     /// Skips tokens up to the next request name (kept as pending), ignoring further errors.
     fn resynchronise(&mut self) {
+        self.lexer.quiet = true;
         loop {
             match self.token() {
                 Ok((t @ (Token::Name(_) | Token::Structure(_) | Token::Eof), p)) => {
                     self.pending = Some((t, p));
+                    self.lexer.quiet = false;
                     return;
                 }
                 _ => continue,

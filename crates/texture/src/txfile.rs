@@ -232,14 +232,15 @@ impl TiledExr {
         let mut sorted = offsets.clone();
         sorted.sort_unstable();
         sorted.push(len);
-        // A chunk runs to the next chunk or the end of the file; an offset past the end (a
-        // corrupt table) has no bytes, so it reads as a missing tile instead of a huge buffer.
+        // A chunk runs to the next chunk or the end of the file, whichever comes first (the
+        // next offset of a corrupt table may lie far past the end); an offset past the end has
+        // no bytes, so it reads as a missing tile instead of a huge buffer.
         let length_of = |o: u64| -> usize {
             if o >= len {
                 return 0;
             }
             let i = sorted.partition_point(|&x| x <= o);
-            (sorted[i.min(sorted.len() - 1)].saturating_sub(o)) as usize
+            (sorted[i.min(sorted.len() - 1)].min(len) - o) as usize
         };
         let tile = (desc.tile_size.0, desc.tile_size.1);
         let nlevels = match desc.level_mode {
@@ -375,12 +376,30 @@ impl TiledExr {
             })?;
         let chunk = Chunk::read(&mut Cursor::new(bytes), &self.meta)
             .map_err(|e| fmt(format!("bad tile ({tx},{ty}) level {level}: {e}")))?;
-        let block = UncompressedBlock::decompress_chunk(chunk, &self.meta, false).map_err(|e| {
+        // The exr crate's decoders can panic on corrupt data (B44 under overflow checks).
+        let block = std::panic::catch_unwind(|| {
+            UncompressedBlock::decompress_chunk(chunk, &self.meta, false)
+        })
+        .unwrap_or_else(|_| Err(exr::error::Error::Invalid("corrupt compressed data".into())))
+        .map_err(|e| {
             fmt(format!(
                 "cannot decompress tile ({tx},{ty}) level {level}: {e}"
             ))
         })?;
         let (tw, th) = (block.index.pixel_size.0, block.index.pixel_size.1);
+        // The chunk names its own tile: a corrupt table can point at another tile's chunk,
+        // whose size the cache (which indexes by the requested tile) would misread.
+        let (lw, lh) = self.levels[level];
+        let expected = (
+            self.tile.0.min(lw.saturating_sub(tx * self.tile.0)),
+            self.tile.1.min(lh.saturating_sub(ty * self.tile.1)),
+        );
+        if (tw, th) != expected {
+            return Err(fmt(format!(
+                "tile ({tx},{ty}) of level {level}: expected {}×{} texels, the chunk holds {tw}×{th}",
+                expected.0, expected.1
+            )));
+        }
         let nch = self.channels.len();
         let short = || fmt("short tile".into());
         let all_half = self
@@ -388,6 +407,17 @@ impl TiledExr {
             .iter()
             .all(|(_, t)| matches!(t, SampleType::F16));
         let data = &block.data;
+        // The tile's size comes from the header: check the texels it claims against the bytes
+        // the tile holds before allocating them (a corrupt tile size aborted here).
+        let texel_bytes: usize = self
+            .channels
+            .iter()
+            .map(|(_, t)| t.bytes_per_sample())
+            .sum();
+        tw.checked_mul(th)
+            .and_then(|n| n.checked_mul(texel_bytes))
+            .filter(|&n| texel_bytes > 0 && n <= data.len())
+            .ok_or_else(short)?;
         if all_half {
             // Scan lines hold each channel's row in turn; the cache wants texels interleaved.
             let mut out = vec![f16::ZERO; tw * th * nch];

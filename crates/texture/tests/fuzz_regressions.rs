@@ -1,5 +1,7 @@
-//! Inputs `fuzz/fuzz_targets/read_texture.rs` found to crash the `.tx`/`.sm` reader (an
-//! abort allocating a buffer sized by a corrupt offset table or tile count). Each file in
+//! Inputs the `read_texture` fuzz target (`fuzz/src/texture.rs`) and its smoke pass found to
+//! crash the `.tx`/`.sm` reader (an abort allocating a buffer sized by a corrupt offset table,
+//! tile count or the offset after a tile's; a panic indexing a tile whose chunk was another
+//! tile's). Each file in
 //! `tests/fuzz_crashes/` is 8 lookup-parameter bytes and then the texture, decoded as the
 //! target decodes them; the same lookups must now end in errors, not a panic or an abort.
 use glam::Vec3;
