@@ -376,6 +376,9 @@ fn area_scene(dir: &Path, light: &str) -> String {
 /// `Cl` in two implementations) except at most 1 pixel in 1000, and those by at most one
 /// sample's share (1/16): a shadow ray grazing the occluder's edge may decide differently when
 /// cast from the other end (the built-in aims from the surface, `shadow()` from its segment).
+/// Under `ShadingInterpolation "constant"` a micropolygon's colour is the mean of its four
+/// vertices, so one vertex that decides differently moves the four micropolygons around it by
+/// a quarter as much: up to 4 pixels in 1000 (measured 20 of 12,800, in groups of 4).
 /// A point light in place of the disk, or a sample lost, differs in whole swaths.
 #[test]
 fn an_sl_area_light_gives_the_builtin_arealight_penumbra() {
@@ -405,7 +408,7 @@ fn an_sl_area_light_gives_the_builtin_arealight_penumbra() {
         .map(|(i, (a, b))| (i, a[0] / lit, b[0] / lit))
         .collect();
     assert!(
-        worst < 1.0 / 16.0 + 2e-3 && over.len() * 1000 <= sl.rgba.len() / 4,
+        worst < 1.0 / 16.0 + 2e-3 && over.len() * 1000 <= 4 * (sl.rgba.len() / 4),
         "largest difference {worst} of the lit value; {} pixels over 2e-3: {:?}",
         over.len(),
         &over[..over.len().min(12)]

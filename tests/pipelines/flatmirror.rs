@@ -110,7 +110,8 @@ fn the_mirror_shows_the_mirrored_scene_render_at_the_same_ndc() {
             / mirror.len() as f64
     };
     let mean = mean_at((0.0, 0.0));
-    let shifted = [(-0.5, 0.0), (0.5, 0.0), (0.0, -0.5), (0.0, 0.5)].map(mean_at);
+    let half = [(-0.5, 0.0), (0.5, 0.0), (0.0, -0.5), (0.0, 0.5)].map(mean_at);
+    let shifted = [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0)].map(mean_at);
     let flat_pixels: Vec<f64> = mirror
         .iter()
         .filter(|&&(x, y)| flat(refl, x, y))
@@ -119,7 +120,8 @@ fn the_mirror_shows_the_mirrored_scene_render_at_the_same_ndc() {
     let flat_worst = flat_pixels.iter().copied().fold(0.0, f64::max);
     eprintln!(
         "flatmirror: {} mirror pixels ({reflecting} showing reflected surfaces), mean |beauty - \
-         mirrored| {mean:.5}; with the map half a pixel left/right/up/down {shifted:.5?}; worst \
+         mirrored| {mean:.5}; with the map half a pixel left/right/up/down {half:.5?}, a pixel \
+         {shifted:.5?}; worst \
          over {} flat pixels {flat_worst:.5}",
         mirror.len(),
         flat_pixels.len()
@@ -131,18 +133,29 @@ fn the_mirror_shows_the_mirrored_scene_render_at_the_same_ndc() {
     );
     // Mean below 0.006: the map is half float (relative error 5e-4), ReflMap filters over one
     // pixel's footprint (softening edges by under a pixel), and the two passes jitter their
-    // samples differently (frame numbers differ). Registration: the match must be best with no
-    // offset, better than with the map half a pixel off in any direction.
+    // samples differently (frame numbers differ). Measured 0.0048. Registration: the match
+    // must be best with no offset: better than with the map half a pixel off in any
+    // direction, and clearly better than a whole pixel off. A micropolygon's colour is the
+    // mean of its four vertices' lookups, a filter two pixels wide, which flattens the minimum
+    // (measured 6% below the nearest half-pixel offset).
     assert!(mean < 0.006, "mean difference {mean}");
-    for (s, offset) in shifted.iter().zip(["left", "right", "up", "down"]) {
+    for (s, offset) in half.iter().zip(["left", "right", "up", "down"]) {
         assert!(
-            mean < 0.9 * s,
+            mean < *s,
             "the map matches better half a pixel {offset}: {s} vs {mean}"
         );
     }
-    // Flat pixels: half-float precision plus filtering of a near-constant neighbourhood.
+    for (s, offset) in shifted.iter().zip(["left", "right", "up", "down"]) {
+        assert!(
+            mean < 0.9 * s,
+            "the map matches better a pixel {offset}: {s} vs {mean}"
+        );
+    }
+    // Flat pixels: half-float precision plus filtering of a near-constant neighbourhood, but
+    // the mean of four vertices' lookups reaches an edge just outside the 3×3 neighbourhood:
+    // measured 0.0134 (under 0.01 with the first vertex's colour).
     assert!(
-        flat_pixels.len() > 5000 && flat_worst < 0.01,
+        flat_pixels.len() > 5000 && flat_worst < 0.02,
         "worst difference over {} flat pixels {flat_worst}",
         flat_pixels.len()
     );

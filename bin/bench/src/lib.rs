@@ -16,3 +16,4 @@ pub mod plot;
 pub mod scene;
 pub mod sweep;
 pub mod table;
+pub mod threads;

@@ -1,8 +1,9 @@
 //! `bench`: sweeps the renderer's quality knobs over closed-form and gallery scenes and writes
 //! `speed_error.csv`, `speed_error.png` and `speed_error.md` (issue 8).
 //!
-//! Exit codes: 0 every point measured, 1 some points or scenes failed (the rest written),
-//! 2 usage error or nothing could be measured.
+//! Exit codes: 0 every point measured, 1 some points or scenes failed (the rest written) or,
+//! with `--threads` alone, some thread count's image differed from 1 thread's, 2 usage error
+//! or nothing could be measured.
 #![forbid(unsafe_code)]
 
 use bench::knob::Settings;
@@ -39,15 +40,25 @@ struct Args {
     /// Renders per point, the fastest kept (default 1 with --quick, else 2).
     #[arg(long)]
     repeat: Option<usize>,
-    /// Threads of every point except the thread-count sweep (default: all cores).
+    /// `--threads N`: threads of every point except the thread-count sweep (default: all
+    /// cores). `--threads` alone: the thread-scaling table instead of the sweep: the teapot and
+    /// 400 spheres at --scales × their Format (default 4) rendered with 1, 2, … --max-threads
+    /// threads, wall, CPU, speedup, efficiency and whether the bits match 1 thread (issue 21).
+    #[arg(long, num_args = 0..=1)]
+    threads: Option<Option<usize>>,
+    /// The largest thread count of `--threads` alone (default: all cores).
     #[arg(long)]
-    threads: Option<usize>,
+    max_threads: Option<usize>,
+    /// Print `--threads`' table as CSV instead of markdown.
+    #[arg(long)]
+    csv: bool,
     /// Motion blur against the still frame: render rib/bench's blur scenes shutter open and
     /// closed at each of --scales × their Format and print the times (issue 21), no sweep.
     #[arg(long)]
     motion: bool,
-    /// Image scales of --motion (default 1,2,4).
-    #[arg(long, value_delimiter = ',', default_value = "1,2,4")]
+    /// Image scales of --motion (default 1,2,4); with `--threads` alone, the one scale used
+    /// (default 4).
+    #[arg(long, value_delimiter = ',')]
     scales: Vec<u32>,
     /// Redraw speed_error.png and speed_error.md from this speed_error.csv, measuring nothing.
     #[arg(long)]
@@ -222,12 +233,39 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
         };
-    let threads = args
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = args.threads.flatten().unwrap_or(cores);
+    if matches!(args.threads, Some(None)) || args.max_threads.is_some() {
+        let scale = args.scales.last().copied().unwrap_or(4);
+        let max_threads = args.max_threads.unwrap_or(cores);
+        let repeat = args.repeat.unwrap_or(2);
+        let rows = bench::threads::run(&render, &rib_dir, &scratch, scale, max_threads, repeat);
+        if own_scratch {
+            let _ = std::fs::remove_dir_all(&scratch);
+        }
+        return match rows {
+            Ok(rows) if args.csv => {
+                print!("{}", bench::threads::csv(&rows));
+                ExitCode::from(u8::from(rows.iter().any(|r| !r.identical)))
+            }
+            Ok(rows) => {
+                println!("{}", bench::threads::table(&rows));
+                ExitCode::from(u8::from(rows.iter().any(|r| !r.identical)))
+            }
+            Err(e) => {
+                eprintln!("bench: {e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     if args.motion {
         let repeat = args.repeat.unwrap_or(1);
-        let rows = bench::motion::run(&render, &rib_dir, &scratch, &args.scales, threads, repeat);
+        let scales = if args.scales.is_empty() {
+            vec![1, 2, 4]
+        } else {
+            args.scales.clone()
+        };
+        let rows = bench::motion::run(&render, &rib_dir, &scratch, &scales, threads, repeat);
         if own_scratch {
             let _ = std::fs::remove_dir_all(&scratch);
         }

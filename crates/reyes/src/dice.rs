@@ -3,6 +3,7 @@
 //! (for displaced grids) checked against the `displacementbound`.
 use crate::csg::NO_SOLID;
 use crate::displacement_bound::{measure_overflow, Overflow};
+use crate::flat_shading::{micropolygon_colours, micropolygon_means, micropolygon_of};
 use crate::hider::{ns, Counters};
 use crate::lens::Lens;
 use crate::motion::GridMotion;
@@ -62,8 +63,8 @@ impl ShadedGrid {
         [bottom, right, top, left]
     }
 
-    /// Colour and opacity at barycentric weights `w` of grid vertices `idx`, or at the
-    /// micropolygon's `first` vertex when shading is flat.
+    /// Colour and opacity at barycentric weights `w` of grid vertices `idx`, or the constant
+    /// of the micropolygon whose first vertex is `first` when shading is flat.
     pub(crate) fn shaded_at(&self, idx: [usize; 3], w: [f64; 3], first: usize) -> (Vec3, Vec3) {
         if self.smooth {
             let [a, b, cc] = w.map(|x| x as f32);
@@ -72,7 +73,8 @@ impl ShadedGrid {
                 self.oi[idx[0]] * a + self.oi[idx[1]] * b + self.oi[idx[2]] * cc,
             )
         } else {
-            (self.ci[first], self.oi[first])
+            let m = micropolygon_of(first, self.nu);
+            (self.ci[m], self.oi[m])
         }
     }
 
@@ -90,7 +92,8 @@ impl ShadedGrid {
             return false;
         }
         let smooth = self.smooth.then(|| (idx, w.map(|x| x as f32)));
-        crate::aov::push_record(store, &self.aov, stride, smooth, first);
+        let record = micropolygon_of(first, self.nu);
+        crate::aov::push_record(store, &self.aov, stride, smooth, record);
         true
     }
 }
@@ -230,6 +233,17 @@ pub(crate) fn dice_and_shade(
         .is_some()
         .then(|| measure_overflow(&grid.p, &shaded.p, &pos, &seam, a.displacement_bound))
         .flatten();
+    let smooth = a.smooth_shading;
+    let (ci, oi, aov) = if smooth {
+        (shaded.ci, shaded.oi, shaded.aov)
+    } else {
+        let stride = shaded.aov.len().checked_div(nu * nv).unwrap_or(0);
+        (
+            micropolygon_colours(&shaded.ci, nu, nv),
+            micropolygon_colours(&shaded.oi, nu, nv),
+            micropolygon_means(&shaded.aov, nu, nv, stride),
+        )
+    };
     counters.grids.fetch_add(1, Relaxed);
     counters
         .micropolygons
@@ -238,15 +252,15 @@ pub(crate) fn dice_and_shade(
         nu,
         nv,
         pos,
-        ci: shaded.ci,
-        oi: shaded.oi,
-        aov: shaded.aov,
+        ci,
+        oi,
+        aov,
         backface,
         solid,
         ccw_enters: flip > 0.0,
         seam,
         matte: a.matte,
-        smooth: a.smooth_shading,
+        smooth,
         overflow,
         motion,
     }))

@@ -15,6 +15,7 @@ mod dice;
 mod displacement_bound;
 mod film;
 pub mod filter;
+mod flat_shading;
 mod hider;
 mod lens;
 mod motion;

@@ -61,7 +61,7 @@ pub(crate) struct Hit {
     /// Grid vertices of the hit triangle and the barycentric weights of the sample in it.
     pub idx: [usize; 3],
     pub w: [f64; 3],
-    /// The micropolygon's first vertex (its colour when shading is flat).
+    /// The micropolygon's first vertex (names its constant colour when shading is flat).
     pub first: usize,
     pub z: f32,
     /// Piece index (high 32 bits) and micropolygon index: the tie-break order at equal depth.

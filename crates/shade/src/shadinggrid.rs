@@ -137,6 +137,24 @@ impl ShadingGrid {
         [at(iu, iv), at(u1, iv), at(iu, v1), at(u1, v1)]
     }
 
+    /// Point `i`'s footprint corners of a per-point quantity `value` ([`ShadingGrid::footprint`]),
+    /// moved so that their centre is the point's own value: a filtered lookup (`texture`,
+    /// `environment`, reflection maps) covers one micropolygon's extent centred on the shaded
+    /// point. Uncentred, it would cover the micropolygon ahead of the point, and a
+    /// micropolygon's colour — the mean of its four vertices under "constant", their blend
+    /// under "smooth" — would show its lookups half a micropolygon ahead (issue 21).
+    pub fn centred_footprint<T>(&self, i: usize, value: impl Fn(usize) -> T) -> [T; 4]
+    where
+        T: Copy
+            + std::ops::Add<Output = T>
+            + std::ops::Sub<Output = T>
+            + std::ops::Mul<f32, Output = T>,
+    {
+        let q = self.footprint(i).map(&value);
+        let shift = value(i) - (q[0] + q[1] + q[2] + q[3]) * 0.25;
+        q.map(|c| c + shift)
+    }
+
     /// `calculatenormal(P)`: `Du(P) × Dv(P)` from grid differences, oriented like `reference`
     /// (the surface's normal before displacement) so that sidedness survives.
     pub fn calculatenormal(&self, reference: &[Vec3]) -> Vec<Vec3> {

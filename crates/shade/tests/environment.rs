@@ -48,7 +48,10 @@ impl TextureLookup for Probe {
             .lock()
             .unwrap()
             .push((name.to_string(), first, o.fill));
-        let all = [st[0][0], st[0][1], 0.5, 0.25];
+        // The footprint's centre, as the texture cache filters about it (the corners are
+        // centred on the shaded point).
+        let centre = |c: usize| 0.25 * (st[0][c] + st[1][c] + st[2][c] + st[3][c]);
+        let all = [centre(0), centre(1), 0.5, 0.25];
         let mut out = [0.0; 4];
         out[..n].copy_from_slice(&all[first..first + n]);
         Some(out)

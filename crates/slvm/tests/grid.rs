@@ -330,7 +330,9 @@ impl illume_shade::TextureLookup for Ramp {
         st: [[f32; 2]; 4],
         _o: &illume_shade::TextureOptions,
     ) -> Option<[f32; 4]> {
-        let [s, t] = st[0];
+        // The footprint's centre (the shaded point), as the texture cache filters about it.
+        let centre = |c: usize| 0.25 * (st[0][c] + st[1][c] + st[2][c] + st[3][c]);
+        let (s, t) = (centre(0), centre(1));
         Some([RAMP.0 * s + RAMP.1 * t; 4])
     }
     fn environment(

@@ -93,8 +93,9 @@ impl<'a> Shadowing<'a> {
             ));
             return 1.0;
         };
-        let p = grid.p[i];
         let (eu, ev) = (grid.dpdu[i] * grid.du, grid.dpdv[i] * grid.dv);
+        // Centred on the shaded point (see `ShadingGrid::centred_footprint`).
+        let p = grid.p[i] - 0.5 * (eu + ev);
         let corners = [p, p + eu, p + ev, p + eu + ev].map(|c| {
             self.world_from_camera
                 .transform_point3(c.as_dvec3())

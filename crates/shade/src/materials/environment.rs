@@ -104,7 +104,9 @@ pub(crate) fn reflmap(
         .collect();
     (0..grid.len())
         .map(|i| {
-            let st = grid.footprint(i).map(|k| ndc[k]);
+            let st = grid
+                .centred_footprint(i, |k| glam::Vec2::from(ndc[k]))
+                .map(|c| c.to_array());
             let opts = TextureOptions {
                 blur: blur[i],
                 ..TextureOptions::default()
@@ -156,7 +158,7 @@ pub(crate) fn environment(
         .collect();
     (0..grid.len())
         .map(|i| {
-            let d = grid.footprint(i).map(|k| dirs[k]);
+            let d = grid.centred_footprint(i, |k| dirs[k]);
             let opts = TextureOptions {
                 blur: blur[i],
                 ..TextureOptions::default()
@@ -216,7 +218,9 @@ pub(crate) fn texture_colors(
     let mut warned = false;
     (0..grid.len())
         .map(|i| {
-            let st = grid.footprint(i).map(|k| [grid.s[k], grid.t[k]]);
+            let st = grid
+                .centred_footprint(i, |k| glam::Vec2::new(grid.s[k], grid.t[k]))
+                .map(|c| c.to_array());
             match t.texture(name, 0, nchannels, st, &TextureOptions::default()) {
                 Some(c) if c.iter().all(|x| x.is_finite()) => c,
                 Some(_) => [0.0; 4],

@@ -98,7 +98,7 @@ fn world_environment(
         .collect();
     (0..ctx.grid.len())
         .map(|i| {
-            let d = ctx.grid.footprint(i).map(|k| dirs[k]);
+            let d = ctx.grid.centred_footprint(i, |k| dirs[k]);
             let opts = TextureOptions {
                 blur: blur[i],
                 ..TextureOptions::default()

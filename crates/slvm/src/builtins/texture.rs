@@ -84,7 +84,14 @@ impl Exec<'_> {
 
     /// Per point, the four footprint corners of a coordinate given once per point (its grid
     /// neighbours) or four times (explicit corners).
-    pub(super) fn corners<T: Copy>(&self, coords: &[Slot<T>], i: usize) -> [T; 4] {
+    /// Grid neighbours are centred on the point (`ShadingGrid::centred_footprint`).
+    pub(super) fn corners<T>(&self, coords: &[Slot<T>], i: usize) -> [T; 4]
+    where
+        T: Copy
+            + std::ops::Add<Output = T>
+            + std::ops::Sub<Output = T>
+            + std::ops::Mul<f32, Output = T>,
+    {
         if coords.len() >= 4 {
             return [
                 *coords[0].at(i),
@@ -94,7 +101,7 @@ impl Exec<'_> {
             ];
         }
         let c = &coords[0];
-        self.grid.footprint(i).map(|k| *c.at(k))
+        self.grid.centred_footprint(i, |k| *c.at(k))
     }
 
     /// `Du(p)·du` and `Dv(p)·dv` per point (grid differences; zero for a uniform point).
@@ -201,7 +208,7 @@ impl Exec<'_> {
                 if p.is_empty() {
                     return zero_of(ty);
                 }
-                // One point: its footprint is the parallelogram P, P + Du(P)du, P + Dv(P)dv,
+                // One point: its footprint is the parallelogram of edges Du(P)du, Dv(P)dv about P,
                 // as the built-in shadow lights take it (from dPdu du, dPdv dv).
                 let edges = (p.len() < 4).then(|| self.footprint_edges(&p[0]));
                 (0..n)
@@ -211,7 +218,9 @@ impl Exec<'_> {
                         }
                         let pw = match &edges {
                             Some((eu, ev)) => {
-                                let (c, eu, ev) = (*p[0].at(i), eu[i], ev[i]);
+                                let (eu, ev) = (eu[i], ev[i]);
+                                // Centred on the point, as `corners` centres grid neighbours.
+                                let c = *p[0].at(i) - 0.5 * (eu + ev);
                                 [c, c + eu, c + ev, c + eu + ev].map(to_world)
                             }
                             None => self.corners(&p, i).map(to_world),
