@@ -36,17 +36,79 @@ impl GridMotion {
     }
 }
 
-/// The raster boxes `[x0, x1, y0, y1]` of micropolygon `quad` between consecutive `cuts`
-/// (times). A vertex moves linearly in camera space between keys, hence along a straight
-/// raster line (a projective map keeps lines), so the box of its positions at a stratum's two
-/// cuts and at every key between holds its whole path there. Each position is projected once
-/// and shared by the two strata it ends. `None` when a position does not project.
-fn strata_boxes(
+/// What bounds a moving micropolygon over one time stratum `[t0, t1]`.
+#[derive(Clone, Copy, Debug)]
+struct StratumBound {
+    /// Raster box `[x0, x1, y0, y1]` of its whole path over the stratum.
+    path: [f64; 4],
+    /// Stratum start and the mean raster velocity (pixels per unit time) of its corners.
+    t0: f64,
+    v: [f64; 2],
+    /// Raster box holding the micropolygon at every time `t` of the stratum once moved back
+    /// by `v·(t − t0)`: a sample `(x, y, t)` it covers lies inside after the same move.
+    still: [f64; 4],
+    /// The corners' raster chords over the stratum, when no key lies inside it.
+    chord: Option<Chord>,
+}
+
+/// The straight raster paths of a micropolygon's corners over one stratum `[t0, t0 + Δt]`
+/// without a key inside: corner `k` runs from `a[k]` by `d[k]` (raster x, y and camera z).
+#[derive(Clone, Copy, Debug)]
+struct Chord {
+    a: [DVec3; 4],
+    d: [DVec3; 4],
+    inv_dt: f64,
+    persp: bool,
+}
+
+impl Chord {
+    /// The corners at time `t` (`None` when one is behind the eye). Raster x, y are `X/W`
+    /// with `X`, `W` linear in `t` (`W` the camera depth, or 1 orthographic), so corner `k`
+    /// has done the fraction `s = τ·W₁/W(τ)` of its chord at `τ = (t − t0)/Δt`; its depth is
+    /// linear in `τ`. The same positions as projecting the interpolated camera-space corners,
+    /// without a projection per sample.
+    #[inline]
+    fn corners(&self, t: f64, t0: f64) -> Option<[DVec3; 4]> {
+        let tau = (t - t0) * self.inv_dt;
+        let mut v = [DVec3::ZERO; 4];
+        for ((q, a), d) in v.iter_mut().zip(&self.a).zip(&self.d) {
+            let z = a.z + d.z * tau;
+            let s = if self.persp {
+                if z <= 0.0 {
+                    return None;
+                }
+                tau * (a.z + d.z) / z
+            } else {
+                tau
+            };
+            *q = DVec3::new(a.x + d.x * s, a.y + d.y * s, z);
+        }
+        Some(v)
+    }
+}
+
+/// The per-stratum bounds of micropolygon `quad` between consecutive `cuts` (times).
+///
+/// A vertex moves linearly in camera space between keys, hence along a straight raster line
+/// (a projective map keeps lines), so the box of its positions at a stratum's two cuts and at
+/// every key between holds its whole path there (`path`). Without a key inside the stratum,
+/// vertex `k` is at `a_k + d_k·s_k(t)` with `d_k` its raster step over the stratum and `s_k`
+/// the fraction of it done at `t`: raster coordinates are `X/W` with `X`, `W` (camera depth,
+/// or 1 for an orthographic camera) linear in `t`, so `s − τ = τ(1 − τ)(W₁ − W₀)/W(τ)` for
+/// `τ = (t − t0)/(t1 − t0)`, at most `q_k = |W₁ − W₀| / (4·min W)` away from `τ`. Moved back
+/// by the mean velocity `v`, the vertex is at `a_k + (d_k − v·Δt)·τ + d_k·(s_k − τ)`: inside
+/// the box spanned by `a_k` and `a_k + d_k − v·Δt`, grown by `q_k·|d_k|` (`still`). For a
+/// micropolygon that moves rigidly (camera blur, a translation) that box is its own size, so
+/// a sample costs two multiply-adds and compares to reject instead of a full test. Each
+/// position is projected once and shared by the two strata it ends. `None` when a position
+/// does not project.
+fn strata_bounds(
     m: &GridMotion,
+    persp: bool,
     quad: &[usize; 4],
     cuts: &[f64],
     project: &impl Fn(DVec3) -> Option<DVec3>,
-    boxes: &mut Vec<[f64; 4]>,
+    bounds: &mut Vec<StratumBound>,
 ) -> Option<()> {
     let at = |p: DVec3| project(p).filter(|q| q.is_finite());
     let corners = |t: f64| -> Option<[DVec3; 4]> {
@@ -58,20 +120,67 @@ fn strata_boxes(
         Some(v)
     };
     let mut start = corners(*cuts.first()?)?;
-    boxes.clear();
+    bounds.clear();
     for w in cuts.windows(2) {
         let end = corners(w[1])?;
         let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-        let mut add = |q: DVec3| b = [b[0].min(q.x), b[1].max(q.x), b[2].min(q.y), b[3].max(q.y)];
-        start.iter().chain(&end).for_each(|&q| add(q));
+        let add = |b: &mut [f64; 4], lo: DVec3, hi: DVec3| {
+            *b = [
+                b[0].min(lo.x),
+                b[1].max(hi.x),
+                b[2].min(lo.y),
+                b[3].max(hi.y),
+            ];
+        };
+        start.iter().chain(&end).for_each(|&q| add(&mut b, q, q));
+        let mut inner_key = false;
         for (key, &t) in m.keys.iter().zip(&m.times) {
             if t > w[0] && t < w[1] {
+                inner_key = true;
                 for &k in quad {
-                    add(at(key[k].as_dvec3())?);
+                    let q = at(key[k].as_dvec3())?;
+                    add(&mut b, q, q);
                 }
             }
         }
-        boxes.push(b);
+        let dt = w[1] - w[0];
+        let mut bound = StratumBound {
+            path: b,
+            t0: w[0],
+            v: [0.0; 2],
+            still: b,
+            chord: None,
+        };
+        if !inner_key && dt > 0.0 {
+            let mean = start.iter().zip(&end).map(|(a, e)| *e - *a).sum::<DVec3>() * 0.25;
+            let mut s = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
+            for (a, e) in start.iter().zip(&end) {
+                let d = *e - *a;
+                let q = if persp {
+                    0.25 * (e.z - a.z).abs() / a.z.min(e.z)
+                } else {
+                    0.0
+                };
+                let r = d - mean;
+                let grow = DVec3::new(d.x.abs(), d.y.abs(), 0.0) * q;
+                add(
+                    &mut s,
+                    *a + r.min(DVec3::ZERO) - grow,
+                    *a + r.max(DVec3::ZERO) + grow,
+                );
+            }
+            if s.iter().all(|x| x.is_finite()) {
+                bound.v = [mean.x / dt, mean.y / dt];
+                bound.still = s;
+                bound.chord = Some(Chord {
+                    a: start,
+                    d: [0, 1, 2, 3].map(|k| end[k] - start[k]),
+                    inv_dt: 1.0 / dt,
+                    persp,
+                });
+            }
+        }
+        bounds.push(bound);
         start = end;
     }
     Some(())
@@ -212,10 +321,16 @@ fn sample_moving_micropolygon(
     if drift.is_nan() || drift >= 0.25 {
         strata = 1;
     }
-    let boxes = &mut scratch.boxes;
+    let bounds = &mut scratch.bounds;
     if strata == 1 {
-        boxes.clear();
-        boxes.push(key_box);
+        bounds.clear();
+        bounds.push(StratumBound {
+            path: key_box,
+            t0: shutter[0],
+            v: [0.0; 2],
+            still: key_box,
+            chord: None,
+        });
     } else {
         mp.pad = drift;
         let cuts = &mut scratch.cuts;
@@ -225,12 +340,12 @@ fn sample_moving_micropolygon(
         if cuts[strata].is_empty() {
             cuts[strata] = stratum_cuts(strata, n, shutter);
         }
-        if strata_boxes(m, &quad, &cuts[strata], project, boxes).is_none() {
+        if strata_bounds(m, persp, &quad, &cuts[strata], project, bounds).is_none() {
             return 0;
         }
     }
     let mut hits = 0;
-    for (k, &b) in boxes.iter().enumerate() {
+    for (k, &b) in bounds.iter().enumerate() {
         match mp.sample_stratum(b, stratum_samples(k, strata, n), project, out) {
             Some(h) => hits += h,
             None => return hits,
@@ -240,11 +355,11 @@ fn sample_moving_micropolygon(
 }
 
 /// Buffers a grid's micropolygons reuse: the shutter cuts per stratum count (filled when
-/// first needed) and one micropolygon's stratum boxes.
+/// first needed) and one micropolygon's stratum bounds.
 #[derive(Default)]
 struct Scratch {
     cuts: Vec<Vec<f64>>,
-    boxes: Vec<[f64; 4]>,
+    bounds: Vec<StratumBound>,
 }
 
 /// One moving micropolygon and what testing a sample against it needs.
@@ -281,13 +396,14 @@ impl MovingMicropolygon<'_> {
         (qx0 <= qx1 && qy0 <= qy1).then_some([qx0, qx1, qy0, qy1])
     }
 
-    /// Tests the samples at time-ordered positions `run` of every pixel the raster box `b`
-    /// (the pinhole path over those samples' times) reaches, grown by the edge reach and the
-    /// circle of confusion. `None` when a position fails to project (the micropolygon is
-    /// dropped, as when a key does not project).
+    /// Tests the samples at time-ordered positions `run` of every pixel the stratum's path
+    /// box (the pinhole path over those samples' times) reaches, grown by the edge reach and
+    /// the circle of confusion; a sample is first moved back along the stratum's mean
+    /// velocity and compared with its `still` box. `None` when a position fails to project
+    /// (the micropolygon is dropped, as when a key does not project).
     fn sample_stratum(
         &self,
-        b: [f64; 4],
+        sb: StratumBound,
         run: std::ops::Range<usize>,
         project: &impl Fn(DVec3) -> Option<DVec3>,
         out: &mut SampleBuffer,
@@ -295,20 +411,25 @@ impl MovingMicropolygon<'_> {
         if run.is_empty() {
             return Some(0);
         }
-        let Some([qx0, qx1, qy0, qy1]) = self.pixels(b, out) else {
+        let Some([qx0, qx1, qy0, qy1]) = self.pixels(sb.path, out) else {
             return Some(0);
         };
         let [z0, z1] = self.z;
         let sw = out.size[0];
-        let pad = self.reach.iter().copied().fold(0.0, f64::max) + self.pad + 1e-6;
+        // `pad` holds the motion over a sample time's rounding (`time_slack`); moving back
+        // along `v` over that extra time at most doubles it.
+        let pad = self.reach.iter().copied().fold(0.0, f64::max) + 3.0 * self.pad + 1e-6;
+        let b = sb.still;
         let mut hits = 0;
         for qy in qy0..=qy1 {
             for qx in qx0..=qx1 {
                 let base = (qy as usize * sw + qx as usize) * out.n_per;
                 for p in base + run.start..base + run.end {
                     let ts = out.timed[p];
-                    let (x, y) = (f64::from(ts.x), f64::from(ts.y));
-                    // The pinhole box shifted by this sample's lens offset over the
+                    let dt = f64::from(ts.t) - sb.t0;
+                    let x = f64::from(ts.x) - sb.v[0] * dt;
+                    let y = f64::from(ts.y) - sb.v[1] * dt;
+                    // The still box shifted by this sample's lens offset over the
                     // micropolygon's depth range: most candidates end here.
                     let (ex, ey) = match self.lens {
                         Some(lens) => lens.offset_range(z0, z1, ts.lens),
@@ -321,7 +442,7 @@ impl MovingMicropolygon<'_> {
                     {
                         continue;
                     }
-                    hits += self.sample_at(&ts, project, out)?;
+                    hits += self.sample_at(&ts, &sb, project, out)?;
                 }
             }
         }
@@ -333,20 +454,28 @@ impl MovingMicropolygon<'_> {
     fn sample_at(
         &self,
         ts: &crate::time_strata::TimedSample,
+        sb: &StratumBound,
         project: &impl Fn(DVec3) -> Option<DVec3>,
         out: &mut SampleBuffer,
     ) -> Option<u64> {
         let (x, y) = (f64::from(ts.x), f64::from(ts.y));
-        let seg = segment(&self.m.times, f64::from(ts.t));
-        let mut v = [DVec3::ZERO; 4];
-        for (vk, &k) in v.iter_mut().zip(&self.quad) {
-            let mut q = project(self.m.at(k, seg))?;
-            if let Some(lens) = self.lens {
+        let mut v = match &sb.chord {
+            Some(c) => c.corners(f64::from(ts.t), sb.t0)?,
+            None => {
+                let seg = segment(&self.m.times, f64::from(ts.t));
+                let mut v = [DVec3::ZERO; 4];
+                for (vk, &k) in v.iter_mut().zip(&self.quad) {
+                    *vk = project(self.m.at(k, seg))?;
+                }
+                v
+            }
+        };
+        if let Some(lens) = self.lens {
+            for q in &mut v {
                 let (dx, dy) = lens.offset(q.z, ts.lens);
                 q.x += dx;
                 q.y += dy;
             }
-            *vk = q;
         }
         let s = ts.s as usize;
         let mut hits = 0;

@@ -9,6 +9,21 @@ use illume_geom::{Bound, Primitive};
 use illume_ri::{Attributes, Camera};
 use std::sync::Arc;
 
+/// How much coarser (per side) a piece is diced when its vertices move `blur` raster pixels
+/// over the keys: `max(1, blur/16)`, PRMan's `"dice" "motionfactor"` of 1. Detail finer than
+/// the blur does not show, and a fine dice of a fast piece is what makes motion blur cost
+/// more than the still frame: every micropolygon is tested along its whole path (about
+/// `blur` pixels), so the sampling cost grows with micropolygons × blur, and a piece passing
+/// close to the eye, diced finely where it is big, could take minutes (fuzz finding
+/// `render_rib_slow_motion_eye`). Non-finite blur (a key that does not project) counts as none.
+pub(crate) fn motion_factor(blur: f64) -> f64 {
+    if blur.is_finite() {
+        (blur / 16.0).max(1.0)
+    } else {
+        1.0
+    }
+}
+
 /// Splitting deeper than this drops the piece (a degenerate primitive must not hang).
 const MAX_SPLIT_DEPTH: u32 = 48;
 /// Vertices per side of the coarse test dice used to measure raster size.
@@ -262,7 +277,7 @@ impl Refiner<'_> {
             counts.culled += 1;
             return;
         }
-        let (nu, nv) = self.dice_rates(item.prim.get(), attrs);
+        let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs);
         if (nu - 1) * (nv - 1) > self.grid_size && item.depth + 1 < MAX_SPLIT_DEPTH {
             for child in item.split(false) {
                 self.refine(child, attrs, defer, out);
@@ -316,10 +331,25 @@ impl Refiner<'_> {
     }
 
     /// Micropolygons per side so each is about `ShadingRate` pixels in area: the longest
-    /// raster-space row/column of a coarse test dice, divided by √ShadingRate.
-    fn dice_rates(&self, prim: &dyn Primitive, attrs: &Attributes) -> (usize, usize) {
+    /// raster-space row/column of a coarse test dice, divided by √ShadingRate; for a moving
+    /// piece also by its motion blur ([`motion_factor`]).
+    fn dice_rates(
+        &self,
+        prim: &dyn Primitive,
+        later: &[PrimRef],
+        attrs: &Attributes,
+    ) -> (usize, usize) {
         let g = prim.dice(TEST_DICE, TEST_DICE);
         let pts: Vec<Option<DVec3>> = g.p.iter().map(|&p| self.project(p)).collect();
+        let mut blur = 0.0f64;
+        for k in later {
+            let gk = k.get().dice(TEST_DICE, TEST_DICE);
+            for (a, &p) in pts.iter().zip(&gk.p) {
+                if let (Some(a), Some(b)) = (a, self.project(p)) {
+                    blur = blur.max((b.truncate() - a.truncate()).length());
+                }
+            }
+        }
         let dist = |a: usize, b: usize| match (pts[a], pts[b]) {
             (Some(a), Some(b)) => (a.truncate() - b.truncate()).length(),
             _ => 0.0,
@@ -339,7 +369,7 @@ impl Refiner<'_> {
                     .sum(),
             );
         }
-        let step = f64::from(attrs.shading_rate).sqrt();
+        let step = f64::from(attrs.shading_rate).sqrt() * motion_factor(blur);
         let rate = |l: f64| -> usize {
             let n = (l / step).ceil().clamp(1.0, 4096.0) as usize;
             if attrs.dice_binary {
