@@ -173,3 +173,33 @@ pub fn from_csv(text: &str) -> Result<Vec<Point>, String> {
     }
     Ok(points)
 }
+
+/// The data rows of a CSV text whose first line must be `header` and whose rows must have
+/// `fields` comma-separated fields, each with its 0-based line index (blank lines skipped).
+/// Shared by the `--peer` and `--scaling` readers, which differ only in how fields are typed.
+pub fn records<'a>(
+    text: &'a str,
+    header: &str,
+    fields: usize,
+) -> Result<Vec<(usize, Vec<&'a str>)>, String> {
+    let mut lines = text.lines().enumerate();
+    match lines.next() {
+        Some((_, h)) if h.trim() == header => {}
+        _ => return Err(format!("line 1: expected the header {header:?}")),
+    }
+    lines
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(n, line)| {
+            let f: Vec<&str> = line.split(',').collect();
+            if f.len() == fields {
+                Ok((n, f))
+            } else {
+                Err(format!(
+                    "line {}: expected {fields} fields, found {}",
+                    n + 1,
+                    f.len()
+                ))
+            }
+        })
+        .collect()
+}

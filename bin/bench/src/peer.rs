@@ -190,21 +190,8 @@ pub fn to_csv(rows: &[PeerRow]) -> String {
 
 /// Reads [`to_csv`]'s text back.
 pub fn from_csv(text: &str) -> Result<Vec<PeerRow>, String> {
-    let mut lines = text.lines().enumerate();
-    match lines.next() {
-        Some((_, h)) if h.trim() == HEADER => {}
-        _ => return Err(format!("line 1: expected the header {HEADER:?}")),
-    }
     let mut rows = Vec::new();
-    for (n, line) in lines.filter(|(_, l)| !l.trim().is_empty()) {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 11 {
-            return Err(format!(
-                "line {}: expected 11 fields, found {}",
-                n + 1,
-                f.len()
-            ));
-        }
+    for (n, f) in crate::csv::records(text, HEADER, 11)? {
         let num = |k: usize| -> Result<f64, String> {
             f[k].parse().map_err(|_| {
                 format!(

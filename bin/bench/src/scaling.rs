@@ -283,21 +283,8 @@ pub fn to_csv(rows: &[ScalingRow]) -> String {
 }
 
 pub fn from_csv(text: &str) -> Result<Vec<ScalingRow>, String> {
-    let mut lines = text.lines().enumerate();
-    match lines.next() {
-        Some((_, h)) if h.trim() == HEADER => {}
-        _ => return Err(format!("line 1: expected the header {HEADER:?}")),
-    }
     let mut rows = Vec::new();
-    for (n, line) in lines.filter(|(_, l)| !l.trim().is_empty()) {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 11 {
-            return Err(format!(
-                "line {}: expected 11 fields, found {}",
-                n + 1,
-                f.len()
-            ));
-        }
+    for (n, f) in crate::csv::records(text, HEADER, 11)? {
         let bad = |k: usize| format!("line {}: field {}: unexpected {:?}", n + 1, k + 1, f[k]);
         let int = |k: usize| f[k].parse::<u64>().map_err(|_| bad(k));
         let num = |k: usize| f[k].parse::<f64>().map_err(|_| bad(k));
