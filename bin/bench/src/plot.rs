@@ -82,7 +82,8 @@ impl Axes {
     }
 }
 
-fn line(pixmap: &mut Pixmap, pts: &[(f32, f32)], color: Color, width: f32, dash: bool) {
+/// Strokes the polyline `pts` (anti-aliased, dashed 7/4 when `dash`); also `scaling_plot`'s.
+pub(crate) fn line(pixmap: &mut Pixmap, pts: &[(f32, f32)], color: Color, width: f32, dash: bool) {
     let mut pb = PathBuilder::new();
     for (i, &(x, y)) in pts.iter().enumerate() {
         if i == 0 {

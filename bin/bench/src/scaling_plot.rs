@@ -3,39 +3,14 @@
 //! per pixel, AOVs + 1). The primitive axis draws instanced (dashed) and unique (solid).
 
 use crate::font::{draw_text, text_width};
-use crate::plot::decades;
+use crate::plot::{decades, line};
 use crate::scaling::{all_series, series, Axis, ScalingRow};
-use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
+use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Transform};
 
 const PANEL_W: u32 = 420;
 const PANEL_H: u32 = 320;
 /// Plot-area margins: left, right, top, bottom.
 const MARGIN: [f32; 4] = [80.0, 16.0, 36.0, 56.0];
-
-fn stroke_path(pixmap: &mut Pixmap, pts: &[(f32, f32)], color: Color, dash: bool) {
-    let mut pb = PathBuilder::new();
-    for (i, &(x, y)) in pts.iter().enumerate() {
-        if i == 0 {
-            pb.move_to(x, y);
-        } else {
-            pb.line_to(x, y);
-        }
-    }
-    let Some(path) = pb.finish() else { return };
-    let stroke = Stroke {
-        width: 2.5,
-        dash: if dash {
-            StrokeDash::new(vec![7.0, 4.0], 0.0)
-        } else {
-            None
-        },
-        ..Stroke::default()
-    };
-    let mut paint = Paint::default();
-    paint.set_color(color);
-    paint.anti_alias = true;
-    pixmap.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
-}
 
 /// One panel: `value` of every series of `axis`, log-log, decade ticks.
 fn panel(pixmap: &mut Pixmap, ox: f32, oy: f32, rows: &[ScalingRow], axis: Axis, cpu: bool) {
@@ -60,7 +35,7 @@ fn panel(pixmap: &mut Pixmap, ox: f32, oy: f32, rows: &[ScalingRow], axis: Axis,
     let grey = Color::from_rgba8(200, 200, 200, 255);
     for e in xd.0..=xd.1 {
         let (x, _) = map(10f64.powi(e), 10f64.powi(yd.0));
-        stroke_path(pixmap, &[(x, y0), (x, y1)], grey, false);
+        line(pixmap, &[(x, y0), (x, y1)], grey, 2.5, false);
         let label = format!("1e{e}");
         draw_text(
             pixmap,
@@ -74,7 +49,7 @@ fn panel(pixmap: &mut Pixmap, ox: f32, oy: f32, rows: &[ScalingRow], axis: Axis,
     }
     for e in yd.0..=yd.1 {
         let (_, y) = map(10f64.powi(xd.0), 10f64.powi(e));
-        stroke_path(pixmap, &[(x0, y), (x1, y)], grey, false);
+        line(pixmap, &[(x0, y), (x1, y)], grey, 2.5, false);
         let label = format!("1e{e}");
         draw_text(
             pixmap,
@@ -86,7 +61,13 @@ fn panel(pixmap: &mut Pixmap, ox: f32, oy: f32, rows: &[ScalingRow], axis: Axis,
             false,
         );
     }
-    stroke_path(pixmap, &[(x0, y0), (x0, y1), (x1, y1)], Color::BLACK, false);
+    line(
+        pixmap,
+        &[(x0, y0), (x0, y1), (x1, y1)],
+        Color::BLACK,
+        2.5,
+        false,
+    );
     let title = format!(
         "{}: {}",
         axis.name(),
@@ -114,7 +95,7 @@ fn panel(pixmap: &mut Pixmap, ox: f32, oy: f32, rows: &[ScalingRow], axis: Axis,
             .filter(|r| value(r) > 0.0 && value(r).is_finite())
             .map(|r| map(axis.work(&r.spec), value(r)))
             .collect();
-        stroke_path(pixmap, &pts, color, name == "instanced");
+        line(pixmap, &pts, color, 2.5, name == "instanced");
         for &(x, y) in &pts {
             if let Some(c) = PathBuilder::from_circle(x, y, 4.0) {
                 let mut paint = Paint::default();
