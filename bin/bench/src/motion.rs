@@ -33,11 +33,9 @@ pub fn variant(rib: &str, scale: u32, still: bool) -> Result<(String, u64), Stri
         let words: Vec<&str> = line.split_whitespace().collect();
         match words.as_slice() {
             ["Format", w, h, rest @ ..] => {
-                let w: u32 = w.parse().map_err(|_| format!("bad Format line: {line}"))?;
-                let h: u32 = h.parse().map_err(|_| format!("bad Format line: {line}"))?;
-                let (w, h) = (w * scale, h * scale);
-                pixels = Some(u64::from(w) * u64::from(h));
-                let _ = writeln!(out, "Format {w} {h} {}", rest.join(" "));
+                let (format, n) = crate::scene::multiplied_format(line, w, h, rest, scale)?;
+                pixels = Some(n);
+                let _ = writeln!(out, "{format}");
             }
             ["Shutter", ..] if still => {
                 shutter = true;

@@ -219,6 +219,25 @@ fn scaled_format(line: &str, scale: f64) -> String {
     }
 }
 
+/// The RIB line `Format w h rest…` with `w` and `h` multiplied by `scale`, and its pixel
+/// count; `line` (the original) names the error. Shared by `--motion` and `--threads`, which
+/// rescale a gallery scene the same way (unlike [`scaled_format`], a bad line is an error).
+pub fn multiplied_format(
+    line: &str,
+    w: &str,
+    h: &str,
+    rest: &[&str],
+    scale: u32,
+) -> Result<(String, u64), String> {
+    let w: u32 = w.parse().map_err(|_| format!("bad Format line: {line}"))?;
+    let h: u32 = h.parse().map_err(|_| format!("bad Format line: {line}"))?;
+    let (w, h) = (w * scale, h * scale);
+    Ok((
+        format!("Format {w} {h} {}", rest.join(" ")),
+        u64::from(w) * u64::from(h),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

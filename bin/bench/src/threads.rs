@@ -62,11 +62,9 @@ pub fn scaled(rib: &str, scale: u32) -> Result<(String, u64), String> {
         let words: Vec<&str> = line.split_whitespace().collect();
         match words.as_slice() {
             ["Format", w, h, rest @ ..] => {
-                let w: u32 = w.parse().map_err(|_| format!("bad Format line: {line}"))?;
-                let h: u32 = h.parse().map_err(|_| format!("bad Format line: {line}"))?;
-                let (w, h) = (w * scale, h * scale);
-                pixels = Some(u64::from(w) * u64::from(h));
-                let _ = writeln!(out, "Format {w} {h} {}", rest.join(" "));
+                let (format, n) = crate::scene::multiplied_format(line, w, h, rest, scale)?;
+                pixels = Some(n);
+                let _ = writeln!(out, "{format}");
             }
             ["Display", ..] => {
                 out.push_str("Display \"out.tif\" \"tiff\" \"rgba\"\nQuantize \"rgba\" 0 0 0 0\n")
