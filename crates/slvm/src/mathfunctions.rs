@@ -44,9 +44,20 @@ pub fn inversesqrt(x: f32) -> f32 {
     1.0 / x.sqrt()
 }
 
-/// SL `clamp(x, lo, hi)`: `min(max(x, lo), hi)` (no panic when `lo > hi`, unlike `f32::clamp`).
+/// SL `clamp(x, lo, hi)` as the RI spec words it: `lo` if `x < lo`, else `hi` if `x > hi`, else
+/// `x` (no panic when `lo > hi`, unlike `f32::clamp`). When `lo > hi` the lower bound wins, as
+/// in Aqsis and PRMan: Advanced RenderMan's ray marchers (`smoke.sl`, `cellclouds.sl`) step by
+/// `ss = clamp(ss, 0.005, end - d)` and only terminate because the step never drops below
+/// 0.005 once `d` reaches `end` (`min(max(..))` would give a zero step and loop forever).
+/// A NaN `x` gives `lo`, as before (a NaN never reaches a pixel through `clamp`).
 pub fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
-    x.max(lo).min(hi)
+    if x < lo || x.is_nan() {
+        lo
+    } else if x > hi {
+        hi
+    } else {
+        x
+    }
 }
 
 /// SL `filterstep(edge, x)` with the filter width `w` of `x` over the point's footprint
@@ -88,5 +99,16 @@ mod tests {
         assert!((log_base(8.0, 2.0) - 3.0).abs() < 1e-6);
         assert!((inversesqrt(4.0) - 0.5).abs() < 1e-7);
         assert_eq!(clamp(5.0, 0.0, 1.0), 1.0);
+    }
+
+    #[test]
+    fn clamp_with_crossed_bounds_gives_the_lower_bound_below_it() {
+        // RI spec order: `x < lo` is tested first. `clamp(0.003, 0.005, 0)` is 0.005 (a
+        // ray-marching step that keeps advancing), not 0 as `min(max(x, lo), hi)` would give.
+        assert_eq!(clamp(0.003, 0.005, 0.0), 0.005);
+        assert_eq!(clamp(0.1, 0.005, 0.0), 0.0);
+        assert_eq!(clamp(0.5, 0.0, 1.0), 0.5);
+        assert_eq!(clamp(-1.0, 0.0, 1.0), 0.0);
+        assert_eq!(clamp(f32::NAN, 0.0, 1.0), 0.0);
     }
 }

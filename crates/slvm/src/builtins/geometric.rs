@@ -165,11 +165,11 @@ impl Exec<'_> {
             })),
             v => {
                 let space = st(v);
-                let Some(current_from_to) = self.current_from(&space) else {
+                let Some(to_from_current) = self.to_from_current(&space) else {
                     self.problem(format!("transform: unknown space \"{space}\""));
                     return Some(Value::Triple(p));
                 };
-                let m = current_from_to.inverse() * current_from_from;
+                let m = to_from_current * current_from_from;
                 Value::Triple(p.map(|p| apply(kind, &m, *p)))
             }
         })
