@@ -22,7 +22,7 @@ fn projection() -> CameraProjection {
     }
 }
 
-fn env() -> ShadingEnv<'static> {
+fn env<'a>() -> ShadingEnv<'a> {
     let p = projection();
     let mut env = ShadingEnv::new();
     env.screen_from_camera = p.screen_from_camera();
@@ -33,7 +33,7 @@ fn env() -> ShadingEnv<'static> {
 }
 
 /// Runs surface `src` on a 3×2 grid of camera-space points `P = (s - 0.5, t - 0.5, 2 + s)`;
-/// returns the grid (its `Ci`).
+/// returns the grid (its `Ci`). The shader must run without a run-time warning.
 fn shade(src: &str) -> ShadingGrid {
     let program = compile_source("test.sl", src).unwrap_or_else(|e| panic!("{e}"));
     let id = pick_shader(&program, ShaderKind::Surface, "").expect("a surface");
@@ -49,9 +49,13 @@ fn shade(src: &str) -> ShadingGrid {
         g.p[i] = Vec3::new(s - 0.5, t - 0.5, 2.0 + s);
         g.dpdu[i] = Vec3::new(0.3, 0.1, 0.2);
     }
-    let env = env();
+    let sink = illume_shade::WarnOnce::new();
+    let mut env = env();
+    env.warnings = Some(&sink);
     let cache = LightCache::run(&[], &g, &env);
     inst.shade_surface(&mut g, &Lights::from_cache(&cache), &env);
+    // No run-time problem either (an unknown space is a warning and is taken as current).
+    assert!(sink.messages().is_empty(), "{:?}", sink.messages());
     g
 }
 
