@@ -7,6 +7,7 @@
 //! The build is sequential and every choice is a pure function of the input order (bins,
 //! ties broken towards the lower axis and bin), so the same triangles always give the same
 //! tree, whatever the thread count of the renderer around it.
+use crate::quadric::Quadric;
 use crate::slab::{self, SlabRay};
 use crate::triangle::{PreparedRay, Triangle};
 use crate::wide::{self, Child, Node4, WideRay};
@@ -43,6 +44,16 @@ impl Aabb {
         Aabb {
             min: t.p[0].min(t.p[1]).min(t.p[2]),
             max: t.p[0].max(t.p[1]).max(t.p[2]),
+        }
+    }
+
+    fn of_item(item: &Item, quadrics: &[Quadric]) -> Aabb {
+        match item {
+            Item::Triangle(t) => Aabb::of(t),
+            Item::Quadric(k) => {
+                let (min, max) = quadrics[*k as usize].bound;
+                Aabb { min, max }
+            }
         }
     }
 
@@ -83,6 +94,8 @@ struct Node {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BvhStats {
     pub triangles: usize,
+    /// Quadrics intersected in closed form (`quadric.rs`).
+    pub quadrics: usize,
     pub nodes: usize,
     pub leaves: usize,
     pub max_depth: usize,
@@ -90,11 +103,22 @@ pub struct BvhStats {
 
 /// The nearest hit of a ray: where along it, which triangle (its index in the vector given to
 /// [`Bvh::new`]) and the barycentric weights of that triangle's three vertices at the hit.
+/// A quadric's hit ([`Bvh::with_quadrics`]) has the id `triangle count + quadric index`, its
+/// surface `(u, v)` in `uv` and no barycentric weights (all zero).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f64,
     pub triangle: u32,
     pub barycentric: [f64; 3],
+    pub uv: Option<[f64; 2]>,
+}
+
+/// What a leaf holds: a triangle, or a quadric (an index into the tree's quadrics, which are
+/// too large to sit among the triangles).
+#[derive(Clone, Copy, Debug)]
+enum Item {
+    Triangle(Triangle),
+    Quadric(u32),
 }
 
 /// A BVH over triangles that answers "is anything between here and there?" and "what does
@@ -105,8 +129,9 @@ pub struct Bvh {
     nodes: Vec<Node4>,
     /// The box around everything (padded), for [`Bvh::bound`].
     bound: Option<(Vec3, Vec3)>,
-    triangles: Vec<Triangle>,
-    /// Per stored triangle: its index in the caller's vector (degenerate ones are dropped
+    items: Vec<Item>,
+    quadrics: Vec<Quadric>,
+    /// Per stored item: its index in the caller's vector (degenerate ones are dropped
     /// and the rest reordered, so the caller's data is found through this).
     ids: Vec<u32>,
     /// Per stored triangle: its group (empty when built without groups).
@@ -118,7 +143,6 @@ pub struct Bvh {
 }
 
 struct Build<'a> {
-    tris: &'a [Triangle],
     /// Per triangle (build index): its group; empty: no groups.
     tri_group: &'a [u32],
     /// Per binary node: the group all its triangles share, or [`NO_GROUP`].
@@ -141,49 +165,79 @@ impl Bvh {
     /// are known as such, so a ray can pass over a whole group it cannot hit
     /// ([`Bvh::occluded_except`]). `groups` is empty or one per triangle.
     pub fn with_groups(triangles: Vec<Triangle>, groups: Vec<u32>) -> Bvh {
-        let grouped = groups.len() == triangles.len() && !groups.is_empty();
-        let kept: Vec<(Triangle, u32, u32)> = triangles
+        Bvh::with_quadrics(triangles, groups, Vec::new())
+    }
+
+    /// [`Bvh::with_groups`] plus quadrics intersected in closed form, each with its group
+    /// (used when `groups` is not empty); quadric `k` has the id `triangles.len() + k`.
+    /// Quadrics with a non-finite box are dropped.
+    pub fn with_quadrics(
+        triangles: Vec<Triangle>,
+        groups: Vec<u32>,
+        quadrics: Vec<(Quadric, u32)>,
+    ) -> Bvh {
+        let grouped =
+            groups.len() == triangles.len() && (!groups.is_empty() || !quadrics.is_empty());
+        let triangle_count = triangles.len() as u32;
+        let group_of = |i: u32| {
+            if grouped {
+                groups[i as usize]
+            } else {
+                NO_GROUP
+            }
+        };
+        let mut kept: Vec<(Item, u32, u32)> = triangles
             .into_iter()
             .zip(0u32..)
             .filter(|(t, _)| t.p.iter().all(|p| p.is_finite()) && t.double_area() > 0.0)
-            .map(|(t, i)| {
-                (
-                    t,
-                    i,
-                    if grouped {
-                        groups[i as usize]
-                    } else {
-                        NO_GROUP
-                    },
-                )
+            .map(|(t, i)| (Item::Triangle(t), i, group_of(i)))
+            .collect();
+        let quadrics: Vec<(Quadric, u32)> = quadrics
+            .into_iter()
+            .zip(triangle_count..)
+            .filter(|((q, _), _)| q.bound.0.is_finite() && q.bound.1.is_finite())
+            .map(|((q, g), id)| {
+                let g = if grouped { g } else { NO_GROUP };
+                kept.push((Item::Quadric(0), id, g));
+                (q, g)
             })
             .collect();
-        let tris: Vec<Triangle> = kept.iter().map(|k| k.0).collect();
+        // The quadric items index the kept quadrics in order.
+        let mut next = 0u32;
+        for k in kept.iter_mut() {
+            if let Item::Quadric(index) = &mut k.0 {
+                *index = next;
+                next += 1;
+            }
+        }
+        let quadrics: Vec<Quadric> = quadrics.into_iter().map(|(q, _)| q).collect();
+        let items: Vec<Item> = kept.iter().map(|k| k.0).collect();
         let input_ids: Vec<u32> = kept.iter().map(|k| k.1).collect();
+        let grouped = grouped && !kept.is_empty();
         let tri_group: Vec<u32> = if grouped {
             kept.iter().map(|k| k.2).collect()
         } else {
             Vec::new()
         };
-        let bounds: Vec<Aabb> = tris.iter().map(Aabb::of).collect();
+        let bounds: Vec<Aabb> = items.iter().map(|i| Aabb::of_item(i, &quadrics)).collect();
         let centroids = bounds.iter().map(|b| (b.min + b.max) * 0.5).collect();
         let mut b = Build {
-            tris: &tris,
             tri_group: &tri_group,
             node_group: Vec::new(),
             bounds,
             centroids,
-            order: (0..tris.len() as u32).collect(),
-            nodes: Vec::with_capacity(2 * tris.len() / MAX_LEAF + 1),
+            order: (0..items.len() as u32).collect(),
+            nodes: Vec::with_capacity(2 * items.len() / MAX_LEAF + 1),
             stats: BvhStats {
-                triangles: tris.len(),
+                triangles: items.len() - quadrics.len(),
+                quadrics: quadrics.len(),
                 ..BvhStats::default()
             },
         };
-        if !tris.is_empty() {
-            b.node(0, tris.len(), 0);
+        if !items.is_empty() {
+            b.node(0, items.len(), 0);
         }
-        let ordered = b.order.iter().map(|&i| b.tris[i as usize]).collect();
+        let ordered = b.order.iter().map(|&i| items[i as usize]).collect();
         let ids = b.order.iter().map(|&i| input_ids[i as usize]).collect();
         let groups = b
             .order
@@ -221,7 +275,8 @@ impl Bvh {
         Bvh {
             bound: nodes.first().map(|n| (n.bound.min, n.bound.max)),
             nodes: wide,
-            triangles: ordered,
+            items: ordered,
+            quadrics,
             ids,
             groups: if grouped { groups } else { Vec::new() },
             stats,
@@ -239,7 +294,7 @@ impl Bvh {
     }
 
     pub fn is_empty(&self) -> bool {
-        self.triangles.is_empty()
+        self.items.is_empty()
     }
 
     /// Whether any triangle is hit at `t ∈ (t_min, t_max)` along `origin + t·dir` (`dir` need
@@ -327,7 +382,12 @@ impl Bvh {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= t_min {
             return None;
         }
-        let ray = PreparedRay::new(origin, dir)?;
+        if !origin.is_finite() || !dir.is_finite() || dir == DVec3::ZERO {
+            return None;
+        }
+        // The triangle test's shear, made when the first triangle is met (rays that meet
+        // only quadrics never need it).
+        let mut prepared: Option<PreparedRay> = None;
         let wide = SlabRay::new(origin, dir, self.scale).map(|r| WideRay::new(&r));
         // Pending nodes with where the ray enters them, so the nearest is visited first and
         // nodes beyond a hit found meanwhile are skipped.
@@ -339,7 +399,10 @@ impl Bvh {
             let node = &self.nodes[current as usize];
             let (mut mask, entry) = match &wide {
                 Some(w) => node.enters(w, t_max as f32),
-                None => node.enters_exact(&ray, t_max),
+                None => {
+                    let ray = prepare(&mut prepared, origin, dir)?;
+                    node.enters_exact(ray, t_max)
+                }
             };
             let entry = entry.to_array();
             let mut inner = [(0u32, 0.0f32); 4];
@@ -357,7 +420,7 @@ impl Bvh {
                 }
                 let start = node.first[k] as usize;
                 let end = start + node.count[k] as usize;
-                for (i, (t, &id)) in self.triangles[start..end]
+                for (i, (item, &id)) in self.items[start..end]
                     .iter()
                     .zip(&self.ids[start..end])
                     .enumerate()
@@ -365,9 +428,21 @@ impl Bvh {
                     if skip != NO_GROUP && self.groups[start + i] == skip {
                         continue;
                     }
-                    let Some((hit, barycentric)) = t.intersect_barycentric(&ray, t_min, t_max)
-                    else {
-                        continue;
+                    let (hit, barycentric, uv) = match item {
+                        Item::Triangle(t) => {
+                            let ray = prepare(&mut prepared, origin, dir)?;
+                            match t.intersect_barycentric(ray, t_min, t_max) {
+                                Some((hit, b)) => (hit, b, None),
+                                None => continue,
+                            }
+                        }
+                        Item::Quadric(k) => {
+                            let q = &self.quadrics[*k as usize];
+                            match q.intersect_with(origin, dir, (t_min, t_max), !any) {
+                                Some((hit, uv)) => (hit, [0.0; 3], (!any).then_some(uv)),
+                                None => continue,
+                            }
+                        }
                     };
                     if !keep(id) {
                         continue;
@@ -376,6 +451,7 @@ impl Bvh {
                         t: hit,
                         triangle: id,
                         barycentric,
+                        uv,
                     };
                     if any {
                         return Some(h);
@@ -411,6 +487,14 @@ impl Bvh {
             }
         }
     }
+}
+
+/// The ray prepared for triangle tests, made on first use.
+fn prepare(slot: &mut Option<PreparedRay>, origin: DVec3, dir: DVec3) -> Option<&PreparedRay> {
+    if slot.is_none() {
+        *slot = PreparedRay::new(origin, dir);
+    }
+    slot.as_ref()
 }
 
 /// The group two subtrees share, or [`NO_GROUP`].

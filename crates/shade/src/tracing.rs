@@ -98,6 +98,73 @@ pub fn cosine_direction(n: DVec3, (a, b): (f64, f64)) -> DVec3 {
     (t * x + s * y + n * z).normalize_or_zero()
 }
 
+/// Stratified cosine-weighted directions for `occlusion()`, computed once per sample count:
+/// the midpoints of an `nx × ny` grid of strata of the unit square (`nx = ⌊√n⌋`, the
+/// `n − nx·ny` left over on the R2 sequence), shifted per point by one hashed pair
+/// (Cranley–Patterson rotation: every sample is still uniform over the square, so the estimate
+/// stays unbiased, and the strata stay strata) and lifted to the hemisphere as
+/// [`cosine_direction`] does.
+///
+/// Why: drawing every sample's numbers from its own hash and evaluating its own `sin`/`cos`
+/// and normal frame was a quarter of the time of an `occlusion()` ray (issue 19); here the
+/// shift of the angle is one rotation per point.
+#[derive(Clone, Debug)]
+pub struct CosinePattern {
+    /// Per sample: the square's first coordinate and the cosine and sine of `2π·` its second.
+    strata: Vec<(f64, f64, f64)>,
+}
+
+impl CosinePattern {
+    pub fn new(n: u32) -> CosinePattern {
+        let n = n.max(1);
+        let nx = (f64::from(n).sqrt().floor() as u32).max(1);
+        let ny = n / nx;
+        let strata = (0..n)
+            .map(|k| {
+                let (a, b) = if k < nx * ny {
+                    let (i, j) = (k % nx, k / nx);
+                    (
+                        (f64::from(i) + 0.5) / f64::from(nx),
+                        (f64::from(j) + 0.5) / f64::from(ny),
+                    )
+                } else {
+                    // R2 (Roberts 2018): the plastic number's powers.
+                    let k = f64::from(k);
+                    (
+                        (0.5 + k * 0.754_877_666_246_692_8).fract(),
+                        (0.5 + k * 0.569_840_290_998_053_2).fract(),
+                    )
+                };
+                let (sin, cos) = (std::f64::consts::TAU * b).sin_cos();
+                (a, cos, sin)
+            })
+            .collect();
+        CosinePattern { strata }
+    }
+
+    pub fn len(&self) -> usize {
+        self.strata.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.strata.is_empty()
+    }
+
+    /// The pattern's directions about the unit normal `n`, shifted by `shift` (two uniform
+    /// numbers for the point), to `each` in sample order.
+    pub fn directions(&self, n: DVec3, shift: (f64, f64), mut each: impl FnMut(DVec3)) {
+        let (t, s) = orthonormal(n);
+        let (sin, cos) = (std::f64::consts::TAU * shift.1).sin_cos();
+        for &(a, ck, sk) in &self.strata {
+            let a = (a + shift.0).fract();
+            let r = a.sqrt();
+            let (c, sn) = (ck * cos - sk * sin, sk * cos + ck * sin);
+            let z = (1.0 - a).max(0.0).sqrt();
+            each(t * (r * c) + s * (r * sn) + n * z);
+        }
+    }
+}
+
 /// Two unit vectors completing `n` to an orthonormal frame (Duff et al. 2017).
 fn orthonormal(n: DVec3) -> (DVec3, DVec3) {
     let sign = 1.0f64.copysign(n.z);
@@ -135,6 +202,30 @@ mod tests {
         let [dx, _] = spread.transfer(DVec3::Z, 10.0, n).unwrap();
         assert!((dx.length() - 0.2 * 2f64.sqrt()).abs() < 1e-6);
         assert!(spread.transfer(DVec3::Z, 1.0, DVec3::X).is_none());
+    }
+
+    #[test]
+    fn a_shifted_pattern_is_cosine_weighted_whatever_the_shift() {
+        // E[cos θ] = 2/3 and E[cos² θ] = 1/2 under the cosine density; 64 strata of a smooth
+        // function are within 1e-3 of both for any shift.
+        let n = DVec3::new(-0.2, 0.9, 0.1).normalize();
+        let pattern = CosinePattern::new(64);
+        for shift in [(0.0, 0.0), (0.37, 0.81), (0.999, 0.5)] {
+            let (mut c1, mut c2, mut count) = (0.0, 0.0, 0);
+            pattern.directions(n, shift, |d| {
+                assert!((d.length() - 1.0).abs() < 1e-12 && d.dot(n) >= 0.0);
+                c1 += d.dot(n);
+                c2 += d.dot(n) * d.dot(n);
+                count += 1;
+            });
+            assert_eq!(count, 64);
+            assert!(
+                (c1 / 64.0 - 2.0 / 3.0).abs() < 1e-3,
+                "{shift:?}: {}",
+                c1 / 64.0
+            );
+            assert!((c2 / 64.0 - 0.5).abs() < 1e-3, "{shift:?}: {}", c2 / 64.0);
+        }
     }
 
     #[test]
