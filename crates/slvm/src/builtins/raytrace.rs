@@ -196,9 +196,11 @@ impl Exec<'_> {
         } else {
             0.0
         };
-        let shift = illume_shade::stratified_sample(p, 0, 1, OCCLUSION_STREAM ^ seed);
+        let stream = OCCLUSION_STREAM ^ seed;
+        let shift = illume_shade::stratified_sample(p, 0, 1, stream);
+        let jitter = illume_shade::lowbias32((shift.0 * 16_777_216.0) as u32 ^ stream);
         let mut blocked = 0.0f64;
-        pattern.directions(nd, shift, |dir| {
+        pattern.directions(nd, shift, jitter, |dir| {
             let through = t.transmission(&start, dir, maxdist);
             blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
         });
