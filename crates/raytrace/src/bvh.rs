@@ -25,6 +25,11 @@ const MAX_DEPTH: usize = 60;
 /// Traversal stack: a visit pushes at most three more entries than it pops, and the
 /// four-wide tree is no deeper than the binary one (≤ 60 + 17 levels).
 const STACK: usize = 256;
+/// The stack of a shallow tree (binary depth ≤ [`SHALLOW_DEPTH`]: at most 3·20 + 1 entries),
+/// which most ray scenes are; clearing 2 KB for every ray showed in the profile of an
+/// `occlusion()` frame (issue 19), whose trees of quadrics are a few levels deep.
+const SHALLOW_STACK: usize = 64;
+const SHALLOW_DEPTH: usize = 20;
 /// The group of a subtree whose triangles belong to more than one group (or to none).
 pub const NO_GROUP: u32 = u32::MAX;
 
@@ -313,7 +318,7 @@ impl Bvh {
         t_max: f64,
         keep: &dyn Fn(u32) -> bool,
     ) -> bool {
-        self.traverse(origin, dir, t_min, t_max, true, NO_GROUP, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, true, NO_GROUP, keep)
             .is_some()
     }
 
@@ -327,7 +332,7 @@ impl Bvh {
         skip: u32,
         keep: &dyn Fn(u32) -> bool,
     ) -> bool {
-        self.traverse(origin, dir, t_min, t_max, true, skip, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, true, skip, keep)
             .is_some()
     }
 
@@ -340,7 +345,7 @@ impl Bvh {
         skip: u32,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
-        self.traverse(origin, dir, t_min, t_max, false, skip, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, false, skip, keep)
     }
 
     /// The nearest hit's `t` in `(t_min, t_max)`, if any (for tests and probes).
@@ -359,11 +364,30 @@ impl Bvh {
         t_max: f64,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
-        self.traverse(origin, dir, t_min, t_max, false, NO_GROUP, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, false, NO_GROUP, keep)
+    }
+
+    /// [`Bvh::traverse`] with the smaller stack when the tree is shallow enough for it.
+    #[allow(clippy::too_many_arguments)]
+    fn traverse_any_depth(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        any: bool,
+        skip: u32,
+        keep: &dyn Fn(u32) -> bool,
+    ) -> Option<Hit> {
+        if self.stats.max_depth <= SHALLOW_DEPTH {
+            self.traverse::<SHALLOW_STACK>(origin, dir, t_min, t_max, any, skip, keep)
+        } else {
+            self.traverse::<STACK>(origin, dir, t_min, t_max, any, skip, keep)
+        }
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn traverse(
+    fn traverse<const N: usize>(
         &self,
         origin: DVec3,
         dir: DVec3,
@@ -391,7 +415,7 @@ impl Bvh {
         let wide = SlabRay::new(origin, dir, self.scale).map(|r| WideRay::new(&r));
         // Pending nodes with where the ray enters them, so the nearest is visited first and
         // nodes beyond a hit found meanwhile are skipped.
-        let mut stack = [(0u32, 0.0f32); STACK];
+        let mut stack = [(0u32, 0.0f32); N];
         let mut top = 0usize;
         let mut current = 0u32;
         let mut found = None;
