@@ -55,6 +55,9 @@ pub struct Quadric {
     pub bound: (Vec3, Vec3),
     /// A sphere's range of `z / radius` (`sin` of its φ limits), computed once.
     z_range: [f64; 2],
+    /// A whole sphere under a similarity (rotation, uniform scale, translation): its
+    /// camera-space centre and squared radius, so an any-hit test needs no transformation.
+    ball: Option<(DVec3, f64)>,
 }
 
 impl QuadricShape {
@@ -184,6 +187,40 @@ impl QuadricShape {
     }
 }
 
+/// The camera-space ball of a whole sphere whose placement is a similarity (`None` for
+/// anything else): the object's axes stay orthogonal and equally scaled to within 1e-12.
+fn whole_sphere_ball(
+    shape: &QuadricShape,
+    z_range: [f64; 2],
+    object_from_camera: &DMat4,
+) -> Option<(DVec3, f64)> {
+    let QuadricShape::Sphere {
+        radius, thetamax, ..
+    } = *shape
+    else {
+        return None;
+    };
+    let whole =
+        thetamax >= TAU * (1.0 - 1e-12) && z_range[0] <= -1.0 + 1e-12 && z_range[1] >= 1.0 - 1e-12;
+    if !whole {
+        return None;
+    }
+    let m = object_from_camera.inverse();
+    let axes = [
+        m.x_axis.truncate(),
+        m.y_axis.truncate(),
+        m.z_axis.truncate(),
+    ];
+    let s2 = axes[0].length_squared();
+    let similar = (axes[1].length_squared() - s2).abs() <= 1e-12 * s2
+        && (axes[2].length_squared() - s2).abs() <= 1e-12 * s2
+        && axes[0].dot(axes[1]).abs() <= 1e-12 * s2
+        && axes[1].dot(axes[2]).abs() <= 1e-12 * s2
+        && axes[0].dot(axes[2]).abs() <= 1e-12 * s2;
+    let centre = m.w_axis.truncate();
+    (similar && s2 > 0.0 && centre.is_finite()).then_some((centre, radius * radius * s2))
+}
+
 fn radius_finite(s: &QuadricShape) -> bool {
     match *s {
         QuadricShape::Sphere { radius, .. }
@@ -228,6 +265,7 @@ impl Quadric {
             object_from_camera,
             bound,
             z_range,
+            ball: whole_sphere_ball(&shape, z_range, &object_from_camera),
         }
     }
 
@@ -251,6 +289,15 @@ impl Quadric {
         (t_min, t_max): (f64, f64),
         uv: bool,
     ) -> Option<(f64, [f64; 2])> {
+        if let (Some((c, r2)), false) = (self.ball, uv) {
+            let oc = origin - c;
+            let roots = quadratic(dir.dot(dir), 2.0 * oc.dot(dir), oc.dot(oc) - r2);
+            return roots
+                .into_iter()
+                .flatten()
+                .find(|&t| t > t_min && t < t_max)
+                .map(|t| (t, [0.0, 0.0]));
+        }
         let o = self.object_from_camera.transform_point3(origin);
         let d = self.object_from_camera.transform_vector3(dir);
         for t in self.shape.roots(o, d).into_iter().flatten() {
@@ -296,6 +343,46 @@ mod tests {
         assert!((t - 12.0).abs() < 1e-12);
         assert!(s.intersect(DVec3::ZERO, DVec3::X, 0.0, 100.0).is_none());
         assert!(s.intersect(DVec3::ZERO, DVec3::Z, 0.0, 7.9).is_none());
+    }
+
+    #[test]
+    fn a_placed_whole_sphere_answers_any_hit_rays_as_the_general_test_does() {
+        // Scaled by 3, rotated and moved: the ball test (no parameters) and the object-space
+        // test agree on every ray's first hit.
+        let camera_from_object = DMat4::from_translation(DVec3::new(1.0, -2.0, 9.0))
+            * DMat4::from_axis_angle(DVec3::new(1.0, 2.0, 0.5).normalize(), 0.7)
+            * DMat4::from_scale(DVec3::splat(3.0));
+        let q = Quadric::new(
+            QuadricShape::Sphere {
+                radius: 0.5,
+                phimin: -std::f64::consts::FRAC_PI_2,
+                phimax: std::f64::consts::FRAC_PI_2,
+                thetamax: TAU,
+            },
+            camera_from_object.inverse(),
+            (Vec3::new(-1.0, -4.0, 7.0), Vec3::new(3.0, 0.0, 11.0)),
+        );
+        assert!(q.ball.is_some());
+        let mut hits = 0;
+        for k in 0..200 {
+            let a = f64::from(k) * 0.731;
+            // A spiral about the direction of the centre (1, −2, 9).
+            let r = 0.3 * f64::from(k) / 200.0;
+            let dir = DVec3::new(a.sin() * r + 1.0 / 9.0, a.cos() * r - 2.0 / 9.0, 1.0);
+            let fast = q.intersect_with(DVec3::ZERO, dir, (0.0, 100.0), false);
+            let full = q.intersect_with(DVec3::ZERO, dir, (0.0, 100.0), true);
+            assert_eq!(fast.is_some(), full.is_some(), "ray {k}");
+            if let (Some(f), Some(g)) = (fast, full) {
+                assert!(
+                    (f.0 - g.0).abs() < 1e-9 * g.0,
+                    "ray {k}: {} vs {}",
+                    f.0,
+                    g.0
+                );
+                hits += 1;
+            }
+        }
+        assert!(hits > 20 && hits < 200, "{hits} of 200 rays hit");
     }
 
     #[test]
