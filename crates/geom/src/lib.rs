@@ -95,6 +95,13 @@ pub trait Primitive: Send + Sync + std::fmt::Debug {
     /// Adjacent grids of one primitive share their edge vertices exactly (same parameter
     /// values evaluated the same way), so no crack opens between them.
     fn dice(&self, nu: usize, nv: usize) -> Grid;
+
+    /// The whole quadric this primitive is, with its camera-from-object transformation, for
+    /// a ray tracer that intersects quadrics in closed form; `None` for anything else
+    /// (including a piece of a quadric).
+    fn quadric(&self) -> Option<(quadric::Shape, DMat4)> {
+        None
+    }
 }
 
 /// The graphics state `build` needs; everything else stays in `illume-ri`.

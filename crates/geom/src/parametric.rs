@@ -27,6 +27,10 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     fn has_trim(&self) -> bool {
         false
     }
+    /// The quadric this surface is (see [`Primitive::quadric`]).
+    fn quadric(&self) -> Option<(crate::quadric::Shape, glam::DMat4)> {
+        None
+    }
 }
 
 /// A primitive variable whose interpolation is not one of the closed forms of [`Interp`]
@@ -271,6 +275,11 @@ fn halve([a, b]: [f64; 2]) -> Option<([f64; 2], [f64; 2])> {
 impl Primitive for Parametric {
     fn bound(&self) -> Bound {
         self.surface.bound(self.u, self.v)
+    }
+
+    fn quadric(&self) -> Option<(crate::quadric::Shape, glam::DMat4)> {
+        let whole = self.u == [0.0, 1.0] && self.v == [0.0, 1.0];
+        whole.then(|| self.surface.quadric()).flatten()
     }
 
     fn diceable(&self) -> bool {

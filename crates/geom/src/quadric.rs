@@ -291,6 +291,10 @@ impl Surface for Quadric {
         let (lo, hi) = self.shape.object_bound(u, v);
         Bound::of_transformed_box(&self.camera_from_object, lo, hi)
     }
+
+    fn quadric(&self) -> Option<(Shape, DMat4)> {
+        Some((self.shape, self.camera_from_object))
+    }
 }
 
 impl Shape {

@@ -7,6 +7,7 @@
 //! The build is sequential and every choice is a pure function of the input order (bins,
 //! ties broken towards the lower axis and bin), so the same triangles always give the same
 //! tree, whatever the thread count of the renderer around it.
+use crate::quadric::Quadric;
 use crate::slab::{self, SlabRay};
 use crate::triangle::{PreparedRay, Triangle};
 use crate::wide::{self, Child, Node4, WideRay};
@@ -24,6 +25,11 @@ const MAX_DEPTH: usize = 60;
 /// Traversal stack: a visit pushes at most three more entries than it pops, and the
 /// four-wide tree is no deeper than the binary one (≤ 60 + 17 levels).
 const STACK: usize = 256;
+/// The stack of a shallow tree (binary depth ≤ [`SHALLOW_DEPTH`]: at most 3·20 + 1 entries),
+/// which most ray scenes are; clearing 2 KB for every ray showed in the profile of an
+/// `occlusion()` frame (issue 19), whose trees of quadrics are a few levels deep.
+const SHALLOW_STACK: usize = 64;
+const SHALLOW_DEPTH: usize = 20;
 /// The group of a subtree whose triangles belong to more than one group (or to none).
 pub const NO_GROUP: u32 = u32::MAX;
 
@@ -43,6 +49,16 @@ impl Aabb {
         Aabb {
             min: t.p[0].min(t.p[1]).min(t.p[2]),
             max: t.p[0].max(t.p[1]).max(t.p[2]),
+        }
+    }
+
+    fn of_item(item: &Item, quadrics: &[Quadric]) -> Aabb {
+        match item {
+            Item::Triangle(t) => Aabb::of(t),
+            Item::Quadric(k) => {
+                let (min, max) = quadrics[*k as usize].bound;
+                Aabb { min, max }
+            }
         }
     }
 
@@ -83,6 +99,8 @@ struct Node {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BvhStats {
     pub triangles: usize,
+    /// Quadrics intersected in closed form (`quadric.rs`).
+    pub quadrics: usize,
     pub nodes: usize,
     pub leaves: usize,
     pub max_depth: usize,
@@ -90,11 +108,22 @@ pub struct BvhStats {
 
 /// The nearest hit of a ray: where along it, which triangle (its index in the vector given to
 /// [`Bvh::new`]) and the barycentric weights of that triangle's three vertices at the hit.
+/// A quadric's hit ([`Bvh::with_quadrics`]) has the id `triangle count + quadric index`, its
+/// surface `(u, v)` in `uv` and no barycentric weights (all zero).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f64,
     pub triangle: u32,
     pub barycentric: [f64; 3],
+    pub uv: Option<[f64; 2]>,
+}
+
+/// What a leaf holds: a triangle, or a quadric (an index into the tree's quadrics, which are
+/// too large to sit among the triangles).
+#[derive(Clone, Copy, Debug)]
+enum Item {
+    Triangle(Triangle),
+    Quadric(u32),
 }
 
 /// A BVH over triangles that answers "is anything between here and there?" and "what does
@@ -105,8 +134,9 @@ pub struct Bvh {
     nodes: Vec<Node4>,
     /// The box around everything (padded), for [`Bvh::bound`].
     bound: Option<(Vec3, Vec3)>,
-    triangles: Vec<Triangle>,
-    /// Per stored triangle: its index in the caller's vector (degenerate ones are dropped
+    items: Vec<Item>,
+    quadrics: Vec<Quadric>,
+    /// Per stored item: its index in the caller's vector (degenerate ones are dropped
     /// and the rest reordered, so the caller's data is found through this).
     ids: Vec<u32>,
     /// Per stored triangle: its group (empty when built without groups).
@@ -118,7 +148,6 @@ pub struct Bvh {
 }
 
 struct Build<'a> {
-    tris: &'a [Triangle],
     /// Per triangle (build index): its group; empty: no groups.
     tri_group: &'a [u32],
     /// Per binary node: the group all its triangles share, or [`NO_GROUP`].
@@ -141,49 +170,79 @@ impl Bvh {
     /// are known as such, so a ray can pass over a whole group it cannot hit
     /// ([`Bvh::occluded_except`]). `groups` is empty or one per triangle.
     pub fn with_groups(triangles: Vec<Triangle>, groups: Vec<u32>) -> Bvh {
-        let grouped = groups.len() == triangles.len() && !groups.is_empty();
-        let kept: Vec<(Triangle, u32, u32)> = triangles
+        Bvh::with_quadrics(triangles, groups, Vec::new())
+    }
+
+    /// [`Bvh::with_groups`] plus quadrics intersected in closed form, each with its group
+    /// (used when `groups` is not empty); quadric `k` has the id `triangles.len() + k`.
+    /// Quadrics with a non-finite box are dropped.
+    pub fn with_quadrics(
+        triangles: Vec<Triangle>,
+        groups: Vec<u32>,
+        quadrics: Vec<(Quadric, u32)>,
+    ) -> Bvh {
+        let grouped =
+            groups.len() == triangles.len() && (!groups.is_empty() || !quadrics.is_empty());
+        let triangle_count = triangles.len() as u32;
+        let group_of = |i: u32| {
+            if grouped {
+                groups[i as usize]
+            } else {
+                NO_GROUP
+            }
+        };
+        let mut kept: Vec<(Item, u32, u32)> = triangles
             .into_iter()
             .zip(0u32..)
             .filter(|(t, _)| t.p.iter().all(|p| p.is_finite()) && t.double_area() > 0.0)
-            .map(|(t, i)| {
-                (
-                    t,
-                    i,
-                    if grouped {
-                        groups[i as usize]
-                    } else {
-                        NO_GROUP
-                    },
-                )
+            .map(|(t, i)| (Item::Triangle(t), i, group_of(i)))
+            .collect();
+        let quadrics: Vec<(Quadric, u32)> = quadrics
+            .into_iter()
+            .zip(triangle_count..)
+            .filter(|((q, _), _)| q.bound.0.is_finite() && q.bound.1.is_finite())
+            .map(|((q, g), id)| {
+                let g = if grouped { g } else { NO_GROUP };
+                kept.push((Item::Quadric(0), id, g));
+                (q, g)
             })
             .collect();
-        let tris: Vec<Triangle> = kept.iter().map(|k| k.0).collect();
+        // The quadric items index the kept quadrics in order.
+        let mut next = 0u32;
+        for k in kept.iter_mut() {
+            if let Item::Quadric(index) = &mut k.0 {
+                *index = next;
+                next += 1;
+            }
+        }
+        let quadrics: Vec<Quadric> = quadrics.into_iter().map(|(q, _)| q).collect();
+        let items: Vec<Item> = kept.iter().map(|k| k.0).collect();
         let input_ids: Vec<u32> = kept.iter().map(|k| k.1).collect();
+        let grouped = grouped && !kept.is_empty();
         let tri_group: Vec<u32> = if grouped {
             kept.iter().map(|k| k.2).collect()
         } else {
             Vec::new()
         };
-        let bounds: Vec<Aabb> = tris.iter().map(Aabb::of).collect();
+        let bounds: Vec<Aabb> = items.iter().map(|i| Aabb::of_item(i, &quadrics)).collect();
         let centroids = bounds.iter().map(|b| (b.min + b.max) * 0.5).collect();
         let mut b = Build {
-            tris: &tris,
             tri_group: &tri_group,
             node_group: Vec::new(),
             bounds,
             centroids,
-            order: (0..tris.len() as u32).collect(),
-            nodes: Vec::with_capacity(2 * tris.len() / MAX_LEAF + 1),
+            order: (0..items.len() as u32).collect(),
+            nodes: Vec::with_capacity(2 * items.len() / MAX_LEAF + 1),
             stats: BvhStats {
-                triangles: tris.len(),
+                triangles: items.len() - quadrics.len(),
+                quadrics: quadrics.len(),
                 ..BvhStats::default()
             },
         };
-        if !tris.is_empty() {
-            b.node(0, tris.len(), 0);
+        if !items.is_empty() {
+            b.node(0, items.len(), 0);
         }
-        let ordered = b.order.iter().map(|&i| b.tris[i as usize]).collect();
+        let ordered = b.order.iter().map(|&i| items[i as usize]).collect();
         let ids = b.order.iter().map(|&i| input_ids[i as usize]).collect();
         let groups = b
             .order
@@ -221,7 +280,8 @@ impl Bvh {
         Bvh {
             bound: nodes.first().map(|n| (n.bound.min, n.bound.max)),
             nodes: wide,
-            triangles: ordered,
+            items: ordered,
+            quadrics,
             ids,
             groups: if grouped { groups } else { Vec::new() },
             stats,
@@ -239,7 +299,7 @@ impl Bvh {
     }
 
     pub fn is_empty(&self) -> bool {
-        self.triangles.is_empty()
+        self.items.is_empty()
     }
 
     /// Whether any triangle is hit at `t ∈ (t_min, t_max)` along `origin + t·dir` (`dir` need
@@ -258,7 +318,7 @@ impl Bvh {
         t_max: f64,
         keep: &dyn Fn(u32) -> bool,
     ) -> bool {
-        self.traverse(origin, dir, t_min, t_max, true, NO_GROUP, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, true, NO_GROUP, keep)
             .is_some()
     }
 
@@ -272,7 +332,7 @@ impl Bvh {
         skip: u32,
         keep: &dyn Fn(u32) -> bool,
     ) -> bool {
-        self.traverse(origin, dir, t_min, t_max, true, skip, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, true, skip, keep)
             .is_some()
     }
 
@@ -285,7 +345,7 @@ impl Bvh {
         skip: u32,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
-        self.traverse(origin, dir, t_min, t_max, false, skip, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, false, skip, keep)
     }
 
     /// The nearest hit's `t` in `(t_min, t_max)`, if any (for tests and probes).
@@ -304,11 +364,30 @@ impl Bvh {
         t_max: f64,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
-        self.traverse(origin, dir, t_min, t_max, false, NO_GROUP, keep)
+        self.traverse_any_depth(origin, dir, t_min, t_max, false, NO_GROUP, keep)
+    }
+
+    /// [`Bvh::traverse`] with the smaller stack when the tree is shallow enough for it.
+    #[allow(clippy::too_many_arguments)]
+    fn traverse_any_depth(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        any: bool,
+        skip: u32,
+        keep: &dyn Fn(u32) -> bool,
+    ) -> Option<Hit> {
+        if self.stats.max_depth <= SHALLOW_DEPTH {
+            self.traverse::<SHALLOW_STACK>(origin, dir, t_min, t_max, any, skip, keep)
+        } else {
+            self.traverse::<STACK>(origin, dir, t_min, t_max, any, skip, keep)
+        }
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn traverse(
+    fn traverse<const N: usize>(
         &self,
         origin: DVec3,
         dir: DVec3,
@@ -327,11 +406,16 @@ impl Bvh {
         if self.nodes.is_empty() || t_max.is_nan() || t_max <= t_min {
             return None;
         }
-        let ray = PreparedRay::new(origin, dir)?;
+        if !origin.is_finite() || !dir.is_finite() || dir == DVec3::ZERO {
+            return None;
+        }
+        // The triangle test's shear, made when the first triangle is met (rays that meet
+        // only quadrics never need it).
+        let mut prepared: Option<PreparedRay> = None;
         let wide = SlabRay::new(origin, dir, self.scale).map(|r| WideRay::new(&r));
         // Pending nodes with where the ray enters them, so the nearest is visited first and
         // nodes beyond a hit found meanwhile are skipped.
-        let mut stack = [(0u32, 0.0f32); STACK];
+        let mut stack = [(0u32, 0.0f32); N];
         let mut top = 0usize;
         let mut current = 0u32;
         let mut found = None;
@@ -339,7 +423,10 @@ impl Bvh {
             let node = &self.nodes[current as usize];
             let (mut mask, entry) = match &wide {
                 Some(w) => node.enters(w, t_max as f32),
-                None => node.enters_exact(&ray, t_max),
+                None => {
+                    let ray = prepare(&mut prepared, origin, dir)?;
+                    node.enters_exact(ray, t_max)
+                }
             };
             let entry = entry.to_array();
             let mut inner = [(0u32, 0.0f32); 4];
@@ -357,7 +444,7 @@ impl Bvh {
                 }
                 let start = node.first[k] as usize;
                 let end = start + node.count[k] as usize;
-                for (i, (t, &id)) in self.triangles[start..end]
+                for (i, (item, &id)) in self.items[start..end]
                     .iter()
                     .zip(&self.ids[start..end])
                     .enumerate()
@@ -365,9 +452,21 @@ impl Bvh {
                     if skip != NO_GROUP && self.groups[start + i] == skip {
                         continue;
                     }
-                    let Some((hit, barycentric)) = t.intersect_barycentric(&ray, t_min, t_max)
-                    else {
-                        continue;
+                    let (hit, barycentric, uv) = match item {
+                        Item::Triangle(t) => {
+                            let ray = prepare(&mut prepared, origin, dir)?;
+                            match t.intersect_barycentric(ray, t_min, t_max) {
+                                Some((hit, b)) => (hit, b, None),
+                                None => continue,
+                            }
+                        }
+                        Item::Quadric(k) => {
+                            let q = &self.quadrics[*k as usize];
+                            match q.intersect_with(origin, dir, (t_min, t_max), !any) {
+                                Some((hit, uv)) => (hit, [0.0; 3], (!any).then_some(uv)),
+                                None => continue,
+                            }
+                        }
                     };
                     if !keep(id) {
                         continue;
@@ -376,6 +475,7 @@ impl Bvh {
                         t: hit,
                         triangle: id,
                         barycentric,
+                        uv,
                     };
                     if any {
                         return Some(h);
@@ -411,6 +511,14 @@ impl Bvh {
             }
         }
     }
+}
+
+/// The ray prepared for triangle tests, made on first use.
+fn prepare(slot: &mut Option<PreparedRay>, origin: DVec3, dir: DVec3) -> Option<&PreparedRay> {
+    if slot.is_none() {
+        *slot = PreparedRay::new(origin, dir);
+    }
+    slot.as_ref()
 }
 
 /// The group two subtrees share, or [`NO_GROUP`].
@@ -560,5 +668,43 @@ mod tests {
         let o = DVec3::new(0.25, 1.0, 0.25);
         assert_eq!(bvh.nearest(o, DVec3::NEG_Y, 0.0, 10.0), Some(1.0));
         assert!(!bvh.occluded(o, DVec3::Y, 0.0, 10.0));
+    }
+
+    #[test]
+    fn quadrics_and_triangles_share_the_tree_with_ids_after_the_triangles() {
+        use crate::quadric::QuadricShape;
+        use glam::DMat4;
+        // A unit sphere at z = 5 and a triangle in the plane z = 2 covering (0..1, 0..1).
+        let sphere = Quadric::new(
+            QuadricShape::Sphere {
+                radius: 1.0,
+                phimin: -std::f64::consts::FRAC_PI_2,
+                phimax: std::f64::consts::FRAC_PI_2,
+                thetamax: std::f64::consts::TAU,
+            },
+            DMat4::from_translation(-DVec3::new(0.0, 0.0, 5.0)),
+            (Vec3::new(-1.0, -1.0, 4.0), Vec3::new(1.0, 1.0, 6.0)),
+        );
+        let tri = Triangle::new(
+            Vec3::new(0.0, 0.0, 2.0),
+            Vec3::new(1.0, 0.0, 2.0),
+            Vec3::new(0.0, 1.0, 2.0),
+        );
+        let bvh = Bvh::with_quadrics(vec![tri], vec![7], vec![(sphere, 9)]);
+        assert_eq!(bvh.stats().quadrics, 1);
+        let all = |_: u32| true;
+        // Through the triangle first, then (past it) the sphere's near pole.
+        let o = DVec3::new(0.1, 0.1, 0.0);
+        let h = bvh.nearest_hit(o, DVec3::Z, 0.0, 100.0, &all).unwrap();
+        assert_eq!((h.triangle, h.t, h.uv), (0, 2.0, None));
+        let h = bvh.nearest_hit(o, DVec3::Z, 2.5, 100.0, &all).unwrap();
+        assert_eq!(h.triangle, 1);
+        let want = 5.0 - (1.0f64 - 0.02).sqrt();
+        assert!((h.t - want).abs() < 1e-12 && h.uv.is_some());
+        // Its group is passed over, and `keep` sees its id.
+        let skip = bvh.nearest_hit_except(o, DVec3::Z, (2.5, 100.0), 9, &all);
+        assert!(skip.is_none());
+        assert!(!bvh.occluded_by(o, DVec3::Z, 2.5, 100.0, &|id| id != 1));
+        assert!(bvh.occluded(DVec3::new(-0.5, 0.0, 0.0), DVec3::Z, 0.0, 100.0));
     }
 }

@@ -11,15 +11,20 @@
 //!   one `f32` SIMD test checks at once; any-hit traversal for shadow rays, nearest-first for
 //!   the closest hit.
 //!
+//! * [`Quadric`]: spheres, disks, cylinders and cones intersected in closed form, leaves of
+//!   the same tree ([`Bvh::with_quadrics`]): one test instead of a tessellated subtree.
+//!
 //! The crate knows nothing of primitives or shading: the hider dices the scene into triangles
 //! and the lights ask [`Bvh::occluded`] through a trait object, so `illume-shade` never depends
 //! on this crate.
 #![forbid(unsafe_code)]
 
 mod bvh;
+mod quadric;
 mod slab;
 mod triangle;
 mod wide;
 
 pub use bvh::{Bvh, BvhStats, Hit, NO_GROUP};
+pub use quadric::{Quadric, QuadricShape};
 pub use triangle::Triangle;

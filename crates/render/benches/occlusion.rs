@@ -3,11 +3,11 @@
 //!
 //! One frame (spheres on a ground plane, perspective, 256², shading rate 1) rendered with a
 //! surface shader that multiplies its diffuse-like term by `1 − occlusion(P, Nf, 16)` and with
-//! the same shader told to skip the call. Prints the best of three wall times of each on one
+//! the same shader told to skip the call. Prints the best of five wall times of each on one
 //! thread (the ratio is what the target is about; one thread keeps it stable on a shared
 //! machine), their ratio, and occlusion rays per second (16 per shaded point, counted as the
 //! frame's micropolygons: an estimate of the shaded points). On Linux it also prints the
-//! best CPU times and their ratio, steadier than wall times on a loaded machine.
+//! mean CPU times and their ratio, steadier than wall times on a loaded machine.
 use illume_render::{render, RenderSettings};
 use illume_ri::{from_rib_diagnostic, Frame, Ri};
 use std::time::Instant;
@@ -65,25 +65,30 @@ fn cpu_seconds() -> Option<f64> {
     Some(ticks / 100.0)
 }
 
-/// Best of three wall times, best of three CPU times (when known) and the frame's
-/// micropolygons.
+/// Runs of each frame: the best wall time and the mean CPU time over them (the CPU clock
+/// ticks every 10 ms, so one run of a 0.1 s frame would be ±10%).
+const RUNS: u32 = 5;
+
+/// Best wall time, mean CPU time (when known) and the frame's micropolygons.
 fn time(frame: &Frame) -> (f64, Option<f64>, u64) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .expect("a one-thread pool");
-    let (mut best, mut best_cpu) = (f64::INFINITY, None::<f64>);
+    let mut best = f64::INFINITY;
     let mut mps = 0;
-    for _ in 0..3 {
-        let (t, c) = (Instant::now(), cpu_seconds());
+    let c0 = cpu_seconds();
+    for _ in 0..RUNS {
+        let t = Instant::now();
         let r = pool.install(|| render(frame, &RenderSettings::default()));
         best = best.min(t.elapsed().as_secs_f64());
-        if let (Some(c0), Some(c1)) = (c, cpu_seconds()) {
-            best_cpu = Some(best_cpu.map_or(c1 - c0, |b| b.min(c1 - c0)));
-        }
         mps = r.stats.micropolygons;
     }
-    (best, best_cpu, mps)
+    let cpu = match (c0, cpu_seconds()) {
+        (Some(a), Some(b)) => Some((b - a) / f64::from(RUNS)),
+        _ => None,
+    };
+    (best, cpu, mps)
 }
 
 fn main() {
@@ -93,7 +98,7 @@ fn main() {
     let (without, without_cpu, mps) = time(&frame(&rib(&dir, 0)));
     let (with, with_cpu, _) = time(&frame(&rib(&dir, 1)));
     let rays = mps as f64 * 16.0;
-    println!("occlusion(P, N, 16), 256x256, 1 thread, best of 3");
+    println!("occlusion(P, N, 16), 256x256, 1 thread, best of {RUNS} (CPU: mean)");
     println!("without occlusion  {without:>8.3} s");
     println!("with occlusion     {with:>8.3} s");
     println!("ratio              {:>8.2}x", with / without);

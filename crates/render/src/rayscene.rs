@@ -22,13 +22,17 @@
 //! primitive and its vertices' shading data (`trace::hit`), so a hit point can be shaded by
 //! its own surface shader; per-primitive flags say which rays see it (visibility attributes).
 //!
+//! Whole undisplaced spheres, disks, cylinders and cones are not put in as triangles but as
+//! closed-form quadrics (`trace::analytic`); their tessellation only carries shading data.
+//!
 //! Not modelled: motion; area-light geometry is sampled undisplaced; the built-in lights'
 //! shadow rays see `"Os"`/`"shader"` casters as opaque (SL `transmission()` sees `1 − Os`).
+use crate::trace::analytic::{ray_quadric, Analytic};
 use crate::trace::hit::{hit_vertices, HitVertex};
 use crate::trace::shell::Shell;
 use glam::{DVec3, Vec3};
 use illume_geom::{Grid, Primitive};
-use illume_raytrace::{Bvh, Triangle, NO_GROUP};
+use illume_raytrace::{Bvh, Quadric, Triangle, NO_GROUP};
 use illume_ri::{Attributes, Camera, Frame};
 use illume_shade::{AreaEmitter, Occlusion};
 use rayon::prelude::*;
@@ -63,6 +67,8 @@ pub(crate) struct RayScene {
     tri_prim: Vec<u32>,
     tri_verts: Vec<[u32; 3]>,
     verts: Vec<HitVertex>,
+    /// The vertices' primitive variable values (`HitVertex::vars` indexes it).
+    var_data: Vec<f32>,
     /// Some shadow caster is seen as `1 − Os` (else transmission is all or nothing).
     partial_casters: bool,
 }
@@ -85,6 +91,21 @@ pub(crate) struct PrimRays {
     pub dv: f32,
     /// Where its triangles lie: rays leaving it away from this cannot hit it.
     pub shell: Shell,
+    /// A quadric in the BVH in closed form (its triangles are not in it).
+    pub analytic: Option<Analytic>,
+    /// Its `N` is the user's (not flipped by the orientation).
+    pub user_normals: bool,
+    /// Its primitive variables that hits carry, and their scalars per vertex in total.
+    pub vars: Vec<VarLayout>,
+    pub var_floats: usize,
+}
+
+/// One primitive variable as the ray scene stores it per vertex.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct VarLayout {
+    pub name: String,
+    pub ty: illume_rib::Type,
+    pub components: usize,
 }
 
 impl Occlusion for RayScene {
@@ -96,7 +117,15 @@ impl Occlusion for RayScene {
 
 /// The per-primitive output of the build: triangles, their vertices' shading data, and what
 /// rays see of it.
-type PrimBuild = (Vec<Triangle>, Vec<HitVertex>, Vec<[u32; 3]>, PrimRays);
+struct PrimBuild {
+    tris: Vec<Triangle>,
+    verts: Vec<HitVertex>,
+    corners: Vec<[u32; 3]>,
+    var_data: Vec<f32>,
+    /// A quadric that replaces `tris` in the BVH.
+    quadric: Option<Quadric>,
+    rays: PrimRays,
+}
 
 impl RayScene {
     /// Tessellates every primitive that rays can see: shadow casters (not area-light
@@ -111,39 +140,88 @@ impl RayScene {
         let one = |(index, fp): (usize, &illume_ri::FramePrimitive)| -> PrimBuild {
             let a = &fp.attributes;
             let shadow = a.casts_shadows && a.area_light.is_none();
-            let mut rays = PrimRays {
-                attributes: Some(a.clone()),
-                offset: 0.0,
-                shadow,
-                shadow_os: a.transmission_os,
-                traced: a.visible_to_rays,
-                displaced: false,
-                du: 0.0,
-                dv: 0.0,
-                shell: Shell::default(),
+            let mut b = PrimBuild {
+                tris: Vec::new(),
+                verts: Vec::new(),
+                corners: Vec::new(),
+                var_data: Vec::new(),
+                quadric: None,
+                rays: PrimRays {
+                    attributes: Some(a.clone()),
+                    offset: 0.0,
+                    shadow,
+                    shadow_os: a.transmission_os,
+                    traced: a.visible_to_rays,
+                    displaced: false,
+                    du: 0.0,
+                    dv: 0.0,
+                    shell: Shell::default(),
+                    analytic: None,
+                    user_normals: false,
+                    vars: Vec::new(),
+                    var_floats: 0,
+                },
             };
-            let (mut tris, mut verts, mut corners) = (Vec::new(), Vec::new(), Vec::new());
             // Geometry that blocks no ray cannot shadow itself either: no offset needed.
-            if !shadow && !rays.traced {
-                return (tris, verts, corners, rays);
+            if !shadow && !b.rays.traced {
+                return b;
             }
             let mut offset = 0.0f32;
             let rate = Rate {
                 min_segments: MIN_SEGMENTS,
                 raster: a.displacement.is_some(),
             };
-            for mut g in diced(fp.primitive.as_ref(), &frame.camera, rate) {
+            let grids = diced(fp.primitive.as_ref(), &frame.camera, rate);
+            if let Some(g) = grids.first() {
+                b.rays.user_normals = g.user_normals;
+                b.rays.vars = g
+                    .vars
+                    .iter()
+                    .map(|v| VarLayout {
+                        name: v.name.clone(),
+                        ty: v.ty,
+                        components: v.components,
+                    })
+                    .collect();
+                b.rays.var_floats = b.rays.vars.iter().map(|v| v.components).sum();
+            }
+            let single = grids.len() == 1;
+            for mut g in grids {
                 if let Some(p) = displaced(index, &g) {
                     g.p = p;
-                    rays.displaced = true;
+                    b.rays.displaced = true;
                 }
-                (rays.du, rays.dv) = (2.0 * g.du, 2.0 * g.dv);
-                offset = offset.max(triangles(&g, &mut tris));
-                hit_vertices(&g, a, &mut verts, &mut corners);
+                (b.rays.du, b.rays.dv) = (2.0 * g.du, 2.0 * g.dv);
+                offset = offset.max(triangles(&g, &mut b.tris));
+                let base = b.verts.len() as u32;
+                hit_vertices(
+                    &g,
+                    a,
+                    &b.rays.vars,
+                    &mut b.verts,
+                    &mut b.corners,
+                    &mut b.var_data,
+                );
+                if single && !b.rays.displaced {
+                    b.rays.analytic = fp
+                        .primitive
+                        .quadric()
+                        .and_then(|(shape, m)| Analytic::new(shape, m, &g, base));
+                    b.quadric = b.rays.analytic.as_ref().and_then(|_| {
+                        let (shape, m) = fp.primitive.quadric()?;
+                        let bound = fp.primitive.bound();
+                        ray_quadric(&shape, m, (bound.min, bound.max))
+                    });
+                    if b.quadric.is_none() {
+                        b.rays.analytic = None;
+                    }
+                }
             }
-            rays.offset = offset * OFFSET_MARGIN;
-            rays.shell = Shell::of(&tris);
-            (tris, verts, corners, rays)
+            b.rays.offset = offset * OFFSET_MARGIN;
+            // A quadric's surface bulges past its chords by at most the chord distance.
+            let bulge = if b.quadric.is_some() { offset } else { 0.0 };
+            b.rays.shell = Shell::of(&b.tris).grown(f64::from(bulge) * 2.0);
+            b
         };
         let per_prim: Vec<PrimBuild> = if parallel {
             frame.primitives.par_iter().enumerate().map(one).collect()
@@ -156,22 +234,42 @@ impl RayScene {
             tri_prim: Vec::new(),
             tri_verts: Vec::new(),
             verts: Vec::new(),
+            var_data: Vec::new(),
             partial_casters: false,
         };
         let mut all = Vec::new();
         let mut groups = Vec::new();
-        for (index, (tris, verts, corners, rays)) in per_prim.into_iter().enumerate() {
+        let mut quadrics = Vec::new();
+        for (index, mut b) in per_prim.into_iter().enumerate() {
             let base = scene.verts.len() as u32;
-            scene.verts.extend(verts);
-            for (t, c) in tris.into_iter().zip(corners) {
-                scene.tri_verts.push(c.map(|k| base + k));
-                scene.tri_prim.push(index as u32);
-                all.push(t);
-                groups.push(index as u32);
+            let var_base = scene.var_data.len() as u32;
+            scene.verts.extend(b.verts.into_iter().map(|v| HitVertex {
+                vars: v.vars + var_base,
+                ..v
+            }));
+            scene.var_data.extend(b.var_data);
+            if let Some(a) = b.rays.analytic.as_mut() {
+                a.base += base;
             }
-            scene.prims.push(rays);
+            match b.quadric {
+                Some(q) => quadrics.push((q, index as u32)),
+                None => {
+                    for (t, c) in b.tris.into_iter().zip(b.corners) {
+                        scene.tri_verts.push(c.map(|k| base + k));
+                        scene.tri_prim.push(index as u32);
+                        all.push(t);
+                        groups.push(index as u32);
+                    }
+                }
+            }
+            scene.prims.push(b.rays);
         }
-        scene.bvh = Bvh::with_groups(all, groups);
+        // Quadric ids follow the triangles' (`Bvh::with_quadrics`).
+        for &(_, index) in &quadrics {
+            scene.tri_verts.push([0; 3]);
+            scene.tri_prim.push(index);
+        }
+        scene.bvh = Bvh::with_quadrics(all, groups, quadrics);
         scene.partial_casters = scene.prims.iter().any(|p| p.shadow && p.shadow_os);
         scene
     }
@@ -210,7 +308,22 @@ impl RayScene {
 
     /// The three vertices of triangle `id`.
     pub fn vertices(&self, id: u32) -> [&HitVertex; 3] {
-        self.tri_verts[id as usize].map(|k| &self.verts[k as usize])
+        self.corner_ids(id).map(|k| &self.verts[k as usize])
+    }
+
+    /// The vertex indices of triangle `id`'s corners.
+    pub fn corner_ids(&self, id: u32) -> [u32; 3] {
+        self.tri_verts[id as usize]
+    }
+
+    pub fn vertex(&self, k: u32) -> &HitVertex {
+        &self.verts[k as usize]
+    }
+
+    /// The `count` primitive variable values of vertex `k` (empty where there are none).
+    pub fn vertex_vars(&self, k: u32, count: usize) -> &[f32] {
+        let start = self.verts[k as usize].vars as usize;
+        self.var_data.get(start..start + count).unwrap_or(&[])
     }
 
     pub fn bvh(&self) -> &Bvh {

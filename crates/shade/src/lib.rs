@@ -74,5 +74,7 @@ pub use shadingenv::{Located, ShadingEnv, SourceAt, SpecularModel, WarnOnce, War
 pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
-pub use tracing::{cosine_direction, segment, RayDifferential, RayStart, RayTracer, TraceHit};
+pub use tracing::{
+    cosine_direction, segment, CosinePattern, RayDifferential, RayStart, RayTracer, TraceHit,
+};
 pub use volume::{run_volume, volume, Volume};

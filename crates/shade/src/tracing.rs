@@ -98,6 +98,80 @@ pub fn cosine_direction(n: DVec3, (a, b): (f64, f64)) -> DVec3 {
     (t * x + s * y + n * z).normalize_or_zero()
 }
 
+/// Stratified cosine-weighted directions for `occlusion()`, prepared once per sample count:
+/// an `nx × ny` grid of strata of the unit square (`nx = ⌊√n⌋`; the `n − nx·ny` left over
+/// on the R2 sequence, shifted per point). Per point, the angular coordinate of every stratum
+/// is its midpoint shifted by one hashed angle (a rotation about the normal: the strata of a
+/// periodic coordinate stay strata, and each sample is still uniform), and the radial one is
+/// jittered within its stratum by a cheap hash per sample; then lifted to the hemisphere as
+/// [`cosine_direction`] does (Malley's method).
+///
+/// Why: three hashes, a `sin`/`cos` and a normal frame per sample were a quarter of the time
+/// of an `occlusion()` ray (issue 19); here the angle costs one rotation per point.
+#[derive(Clone, Debug)]
+pub struct CosinePattern {
+    /// Radial strata.
+    nx: u32,
+    /// Per sample: its radial stratum (`u32::MAX`: an R2 point, whose radial coordinate is
+    /// `r2`), and the cosine and sine of `2π·` its angular coordinate.
+    strata: Vec<(u32, f64, f64, f64)>,
+}
+
+impl CosinePattern {
+    pub fn new(n: u32) -> CosinePattern {
+        let n = n.max(1);
+        let nx = (f64::from(n).sqrt().floor() as u32).max(1);
+        let ny = n / nx;
+        let strata = (0..n)
+            .map(|k| {
+                let (i, a, b) = if k < nx * ny {
+                    let (i, j) = (k % nx, k / nx);
+                    (i, 0.0, (f64::from(j) + 0.5) / f64::from(ny))
+                } else {
+                    // R2 (Roberts 2018): the plastic number's powers.
+                    let k = f64::from(k);
+                    (
+                        u32::MAX,
+                        (0.5 + k * 0.754_877_666_246_692_8).fract(),
+                        (0.5 + k * 0.569_840_290_998_053_2).fract(),
+                    )
+                };
+                let (sin, cos) = (std::f64::consts::TAU * b).sin_cos();
+                (i, a, cos, sin)
+            })
+            .collect();
+        CosinePattern { nx, strata }
+    }
+
+    pub fn len(&self) -> usize {
+        self.strata.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.strata.is_empty()
+    }
+
+    /// The pattern's directions about the unit normal `n` for a point whose two uniform
+    /// numbers are `shift` and whose hash is `seed`, to `each` in sample order.
+    pub fn directions(&self, n: DVec3, shift: (f64, f64), seed: u32, mut each: impl FnMut(DVec3)) {
+        let (t, s) = orthonormal(n);
+        let (sin, cos) = (std::f64::consts::TAU * shift.1).sin_cos();
+        let nx = f64::from(self.nx);
+        for (k, &(i, r2, ck, sk)) in (0u32..).zip(&self.strata) {
+            let a = if i == u32::MAX {
+                (r2 + shift.0).fract()
+            } else {
+                let h = crate::hash::lowbias32(seed ^ k.wrapping_mul(0x9e37_79b9));
+                (f64::from(i) + f64::from(h >> 8) * (1.0 / 16_777_216.0)) / nx
+            };
+            let r = a.sqrt();
+            let (c, sn) = (ck * cos - sk * sin, sk * cos + ck * sin);
+            let z = (1.0 - a).max(0.0).sqrt();
+            each(t * (r * c) + s * (r * sn) + n * z);
+        }
+    }
+}
+
 /// Two unit vectors completing `n` to an orthonormal frame (Duff et al. 2017).
 fn orthonormal(n: DVec3) -> (DVec3, DVec3) {
     let sign = 1.0f64.copysign(n.z);
@@ -135,6 +209,31 @@ mod tests {
         let [dx, _] = spread.transfer(DVec3::Z, 10.0, n).unwrap();
         assert!((dx.length() - 0.2 * 2f64.sqrt()).abs() < 1e-6);
         assert!(spread.transfer(DVec3::Z, 1.0, DVec3::X).is_none());
+    }
+
+    #[test]
+    fn pattern_directions_are_cosine_weighted_on_average() {
+        // E[cos θ] = 2/3 and E[cos² θ] = 1/2 under the cosine density. The mean over 256
+        // points of 64-sample estimates (18 of them R2 points) has a standard error below
+        // 5e-4 (one point's is ≈ 0.005: radial jitter within 7 strata); 2e-3 is 4σ.
+        let n = DVec3::new(-0.2, 0.9, 0.1).normalize();
+        let pattern = CosinePattern::new(67);
+        let (mut c1, mut c2, mut count) = (0.0, 0.0, 0);
+        for point in 0..256u32 {
+            let h = crate::hash::lowbias32(point);
+            let unit = |h: u32| f64::from(h >> 8) / 16_777_216.0;
+            let shift = (unit(h), unit(crate::hash::lowbias32(h)));
+            pattern.directions(n, shift, h ^ 0x1234, |d| {
+                assert!((d.length() - 1.0).abs() < 1e-12 && d.dot(n) >= 0.0);
+                c1 += d.dot(n);
+                c2 += d.dot(n) * d.dot(n);
+                count += 1;
+            });
+        }
+        assert_eq!(count, 256 * 67);
+        let (c1, c2) = (c1 / f64::from(count), c2 / f64::from(count));
+        assert!((c1 - 2.0 / 3.0).abs() < 2e-3, "E[cos] {c1}");
+        assert!((c2 - 0.5).abs() < 2e-3, "E[cos²] {c2}");
     }
 
     #[test]

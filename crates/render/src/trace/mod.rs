@@ -14,6 +14,7 @@
 //! The scene is built on first use when no light needed it up front; that build runs
 //! sequentially (it may happen inside a shading task, where waiting on rayon work could
 //! deadlock on the once-cell).
+pub(crate) mod analytic;
 pub(crate) mod hit;
 pub(crate) mod shell;
 mod volume;

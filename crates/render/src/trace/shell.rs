@@ -56,6 +56,15 @@ impl Shell {
         Shell { ball, slab }
     }
 
+    /// The shell grown by `by` (a surface that lies up to `by` off the triangles it was
+    /// measured on).
+    pub fn grown(self, by: f64) -> Shell {
+        Shell {
+            ball: self.ball.map(|(c, r)| (c, r + by)),
+            slab: self.slab.map(|(n, mid, half)| (n, mid, half + by)),
+        }
+    }
+
     /// Whether a ray from `origin` along `dir` can meet nothing inside the shell: it starts
     /// outside the ball and moves away from its centre, or outside the slab and away from it.
     pub fn excludes(&self, origin: DVec3, dir: DVec3) -> bool {

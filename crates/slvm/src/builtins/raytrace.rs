@@ -13,7 +13,7 @@ use super::{fl, st, tr, Args};
 use crate::exec::Exec;
 use crate::value::{Mask, Slot, Value};
 use glam::{DVec3, Vec3};
-use illume_shade::{cosine_direction, segment, RayDifferential, RayStart, RayTracer};
+use illume_shade::{segment, CosinePattern, RayDifferential, RayStart, RayTracer};
 use illume_sl::ast::{BuiltinId as B, Expr};
 use illume_sl::types::BaseType;
 
@@ -81,6 +81,8 @@ impl Exec<'_> {
                 let (p, nn, samples) = (tr(&a[0]), tr(&a[1]), fl(&a[2]));
                 let maxdist = self.optional_float(c.pairs, mask, "maxdist", f32::INFINITY);
                 let seed = self.env.seed;
+                // One pattern per sample count (the count is almost always uniform).
+                let pattern = std::cell::RefCell::new(CosinePattern::new(1));
                 let v = self.per_point(mask, Vec3::ZERO, |x, i, t| {
                     let s = *samples.at(i);
                     let k = if s.is_finite() {
@@ -88,7 +90,12 @@ impl Exec<'_> {
                     } else {
                         1
                     };
-                    Vec3::splat(x.occlusion_at(t, i, *p.at(i), *nn.at(i), k, maxdist, seed))
+                    if pattern.borrow().len() != k as usize {
+                        *pattern.borrow_mut() = CosinePattern::new(k);
+                    }
+                    let pattern = pattern.borrow();
+                    let o = x.occlusion_at(t, i, (*p.at(i), *nn.at(i)), &pattern, maxdist, seed);
+                    Vec3::splat(o)
                 });
                 let Value::Triple(s) = v else { return None };
                 Value::Float(s.map(|c| c.x))
@@ -168,21 +175,19 @@ impl Exec<'_> {
     }
 
     /// PRMan's `occlusion()`: the cosine-weighted fraction of the hemisphere about `n` that
-    /// geometry within `maxdist` blocks, from `samples` stratified rays (partial opacity counts
-    /// in part).
-    #[allow(clippy::too_many_arguments)]
+    /// geometry within `maxdist` blocks, from the directions of `pattern` shifted by a hash of
+    /// the point (partial opacity counts in part).
     fn occlusion_at(
         &self,
         t: &dyn RayTracer,
         i: usize,
-        p: Vec3,
-        n: Vec3,
-        samples: u32,
+        (p, n): (Vec3, Vec3),
+        pattern: &CosinePattern,
         maxdist: f32,
         seed: u32,
     ) -> f32 {
         let nd = n.as_dvec3().normalize_or_zero();
-        if nd == DVec3::ZERO {
+        if nd == DVec3::ZERO || pattern.is_empty() {
             return 0.0;
         }
         let start = self.ray_start(i, p);
@@ -191,14 +196,15 @@ impl Exec<'_> {
         } else {
             0.0
         };
+        let stream = OCCLUSION_STREAM ^ seed;
+        let shift = illume_shade::stratified_sample(p, 0, 1, stream);
+        let jitter = illume_shade::lowbias32((shift.0 * 16_777_216.0) as u32 ^ stream);
         let mut blocked = 0.0f64;
-        for k in 0..samples {
-            let u = illume_shade::stratified_sample(p, k, samples, OCCLUSION_STREAM ^ seed);
-            let dir = cosine_direction(nd, u);
+        pattern.directions(nd, shift, jitter, |dir| {
             let through = t.transmission(&start, dir, maxdist);
             blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
-        }
-        (blocked / f64::from(samples)) as f32
+        });
+        (blocked / pattern.len() as f64) as f32
     }
 
     /// `shadow("raytrace", Ps)` in a light shader: the shadowed fraction between `Ps` and the
