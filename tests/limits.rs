@@ -145,19 +145,36 @@ fn past_the_memory_limit_the_rest_of_the_world_is_culled_with_one_error() {
 
 #[test]
 fn instances_count_against_the_memory_limit_too() {
+    // Each under its own attributes: one frame primitive (1024 bytes) each.
     let rib = format!(
         "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [976]\n\
          WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\nObjectEnd\n{}WorldEnd\n",
-        "ObjectInstance 1\n".repeat(100)
+        "AttributeBegin Color [1 0 0] ObjectInstance 1 AttributeEnd\n".repeat(100)
     );
     let (frames, diags) = parse(&rib);
     // (1024 - 976) KB / 1024 bytes = 48 instances.
     let e = find(&diags, Severity::Error, "\"memory\"");
     assert!(
-        e.starts_with("test.rib:55:1: error: ObjectInstance:"),
+        e.starts_with("test.rib:55:30: error: ObjectInstance:"),
         "{e}"
     );
     assert_eq!(frames[0].primitives.len(), 48);
+    // In a run (one batch): the first as a primitive, the others a 128-byte placement each.
+    let rib = format!(
+        "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [976]\n\
+         WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\nObjectEnd\n{}WorldEnd\n",
+        "ObjectInstance 1\n".repeat(1000)
+    );
+    let (frames, diags) = parse(&rib);
+    // 1 + (48 KB - 1024) / 128 = 377 instances; the 378th is on line 6 + 378.
+    let e = find(&diags, Severity::Error, "\"memory\"");
+    assert!(
+        e.starts_with("test.rib:384:1: error: ObjectInstance:"),
+        "{e}"
+    );
+    assert_eq!(frames[0].primitives.len(), 1);
+    let batch = format!("{:?}", frames[0].primitives[0].primitive);
+    assert!(batch.contains("instances: 377"), "{batch}");
 }
 
 #[test]
