@@ -183,6 +183,51 @@ fn a_run_of_instances_is_one_batch_with_the_pixels_of_replayed_ones() {
     assert_eq!(differ, 0, "{differ} of {} values differ", pa.len());
 }
 
+/// A batch splits into at most 16 parts of contiguous instances, each inside the batch's
+/// bound (a part outside it would reach a band of buckets already rendered), down to the
+/// instances themselves, in the order they were given.
+#[test]
+fn a_batch_splits_into_parts_inside_its_bound_keeping_the_order() {
+    let n = 1000;
+    let rib = scene(&format!(
+        "ObjectBegin 1\nSphere 0.5 -0.5 0.5 360\nObjectEnd\n{}",
+        run_of_placements(n, n, "ObjectInstance 1\n")
+    ));
+    let frame = one_frame(&rib);
+    assert_eq!(frame.primitives.len(), 1);
+    let inside = |inner: illume_geom::Bound, outer: illume_geom::Bound| {
+        inner.min.cmpge(outer.min).all() && inner.max.cmple(outer.max).all()
+    };
+    // Depth first, the leaves' x centres in visiting order: the placements' order.
+    let mut stack = vec![(frame.primitives.remove(0).primitive, 0)];
+    let mut centres = Vec::new();
+    while let Some((p, depth)) = stack.pop() {
+        let name = format!("{p:?}");
+        if !name.starts_with("InstanceBatch") {
+            let b = p.bound();
+            centres.push(((b.min + b.max) / 2.0).truncate());
+            continue;
+        }
+        let parts = p.split();
+        assert!((2..=16).contains(&parts.len()), "{name}: {}", parts.len());
+        for part in &parts {
+            assert!(inside(part.bound(), p.bound()), "{part:?} outside {name}");
+        }
+        assert!(depth < 4, "{name} at depth {depth}");
+        stack.extend(parts.into_iter().rev().map(|q| (q, depth + 1)));
+    }
+    assert_eq!(centres.len(), n);
+    let k = (n as f32).sqrt().ceil() as usize;
+    let c = 2.0 / k as f32;
+    for (i, got) in centres.iter().enumerate() {
+        let want = glam::Vec2::new(
+            ((i % k) as f32 + 0.5) * c - 1.0,
+            ((i / k) as f32 + 0.5) * c - 1.0,
+        );
+        assert!((*got - want).length() < 1e-4, "instance {i} at {got}, want {want}");
+    }
+}
+
 /// Objects that change attributes or use absolute transformations keep being replayed (their
 /// primitives depend on the state at the instance), with the same result as before.
 #[test]
