@@ -115,6 +115,119 @@ fn shared_instances_render_the_pixels_of_replayed_ones() {
     assert_eq!(differ, 0, "{differ} of {} values differ", pa.len());
 }
 
+/// `n` overlapping placements at one depth on a grid (so that which instance wins a sample
+/// depends on the order they were given in), `instance` inside each `TransformBegin` block,
+/// with a sphere of its own after the `cut`-th (ending the run of instances there).
+fn run_of_placements(n: usize, cut: usize, instance: &str) -> String {
+    let k = (n as f32).sqrt().ceil() as usize;
+    let c = 2.0 / k as f32;
+    let mut s = String::new();
+    for i in 0..n {
+        let (x, y) = (
+            ((i % k) as f32 + 0.5) * c - 1.0,
+            ((i / k) as f32 + 0.5) * c - 1.0,
+        );
+        let sc = 1.6 * c;
+        write!(
+            s,
+            "TransformBegin\nTranslate {x} {y} 0\nRotate {} 0 0 1\nScale {sc} {sc} {sc}\n{instance}TransformEnd\n",
+            7 * i
+        )
+        .unwrap();
+        if i == cut {
+            s.push_str("Sphere 0.05 -0.05 0.05 360\n");
+        }
+    }
+    s
+}
+
+/// A run of instances under the same attributes is one primitive (a batch the hider splits
+/// into parts and then instances) and renders the bits of the replayed object, overlaps at
+/// equal depth included (the batch keeps the instances' order). A primitive between them
+/// ends the run.
+#[test]
+fn a_run_of_instances_is_one_batch_with_the_pixels_of_replayed_ones() {
+    let (n, m) = (300, 2);
+    // Overlapping coplanar disks, turned differently, tie in depth: their colours show which
+    // instance comes first.
+    let body = format!(
+        "{}Disk 0 0.5 360 \"varying color Cs\" [1 0 0 0 1 0 0 0 1 1 1 0]\n",
+        object_body(m)
+    );
+    let instanced = scene(&format!(
+        "ObjectBegin 7\n{body}ObjectEnd\n{}",
+        run_of_placements(n, 100, "ObjectInstance 7\n")
+    ));
+    let explicit = scene(&run_of_placements(
+        n,
+        100,
+        &format!("AttributeBegin\n{body}AttributeEnd\n"),
+    ));
+    let (a, b) = (one_frame(&instanced), one_frame(&explicit));
+    let batches: Vec<String> = a
+        .primitives
+        .iter()
+        .map(|p| format!("{:?}", p.primitive))
+        .collect();
+    assert_eq!(batches.len(), 3, "two runs and the sphere: {batches:?}");
+    assert!(batches[0].contains("instances: 101"), "{}", batches[0]);
+    assert!(batches[2].contains("instances: 199"), "{}", batches[2]);
+    assert_eq!(b.primitives.len(), n * (m * m + 1) + 1);
+    let (pa, pb) = (pixels(&a), pixels(&b));
+    let covered = pb.chunks(4).filter(|p| p[3] > 0.0).count();
+    assert!(
+        covered > 96 * 96 / 2,
+        "the scene is on screen: {covered} pixels"
+    );
+    let differ = pa.iter().zip(&pb).filter(|(x, y)| x != y).count();
+    assert_eq!(differ, 0, "{differ} of {} values differ", pa.len());
+}
+
+/// A batch splits into at most 16 parts of contiguous instances, each inside the batch's
+/// bound (a part outside it would reach a band of buckets already rendered), down to the
+/// instances themselves, in the order they were given.
+#[test]
+fn a_batch_splits_into_parts_inside_its_bound_keeping_the_order() {
+    let n = 1000;
+    let rib = scene(&format!(
+        "ObjectBegin 1\nSphere 0.5 -0.5 0.5 360\nObjectEnd\n{}",
+        run_of_placements(n, n, "ObjectInstance 1\n")
+    ));
+    let frame = one_frame(&rib);
+    assert_eq!(frame.primitives.len(), 1);
+    let inside = |inner: illume_geom::Bound, outer: illume_geom::Bound| {
+        inner.min.cmpge(outer.min).all() && inner.max.cmple(outer.max).all()
+    };
+    // Depth first, the leaves' x centres in visiting order: the placements' order.
+    let mut stack = vec![(frame.primitives.remove(0).primitive, 0)];
+    let mut centres = Vec::new();
+    while let Some((p, depth)) = stack.pop() {
+        let name = format!("{p:?}");
+        if !name.starts_with("InstanceBatch") {
+            let b = p.bound();
+            centres.push(((b.min + b.max) / 2.0).truncate());
+            continue;
+        }
+        let parts = p.split();
+        assert!((2..=16).contains(&parts.len()), "{name}: {}", parts.len());
+        for part in &parts {
+            assert!(inside(part.bound(), p.bound()), "{part:?} outside {name}");
+        }
+        assert!(depth < 4, "{name} at depth {depth}");
+        stack.extend(parts.into_iter().rev().map(|q| (q, depth + 1)));
+    }
+    assert_eq!(centres.len(), n);
+    let k = (n as f32).sqrt().ceil() as usize;
+    let c = 2.0 / k as f32;
+    for (i, got) in centres.iter().enumerate() {
+        let want = glam::Vec2::new(
+            ((i % k) as f32 + 0.5) * c - 1.0,
+            ((i / k) as f32 + 0.5) * c - 1.0,
+        );
+        assert!((*got - want).length() < 1e-4, "instance {i} at {got}, want {want}");
+    }
+}
+
 /// Objects that change attributes or use absolute transformations keep being replayed (their
 /// primitives depend on the state at the instance), with the same result as before.
 #[test]

@@ -405,3 +405,22 @@ fn a_c_program_renders_the_bits_of_its_captured_rib() {
         .count();
     assert!(lit > 100, "only {lit} lit pixels");
 }
+
+/// The C tests refuse a `libillume.a` older than a source it was built from (cargo's dep-info
+/// beside it names them, with the paths of the checkout that built it).
+#[test]
+fn a_library_older_than_its_sources_is_found_stale() {
+    let dir = scratch("stale");
+    let lib = dir.join("libillume.a");
+    std::fs::write(&lib, b"!<arch>\n").unwrap();
+    let source = "/some/other/checkout/crates/ri/src/lib.rs";
+    let info = format!("{}: {source} /registry/glam/src/lib.rs\n", lib.display());
+    std::fs::write(dir.join("libillume.d"), info).unwrap();
+    // Written just now: newer than this checkout's crates/ri/src/lib.rs.
+    assert_eq!(c_programs::newer_source(&lib), None);
+    let old = std::time::SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1);
+    let file = std::fs::File::options().write(true).open(&lib).unwrap();
+    file.set_modified(old).unwrap();
+    let here = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/ri/src/lib.rs");
+    assert_eq!(c_programs::newer_source(&lib), Some(here));
+}

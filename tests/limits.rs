@@ -3,8 +3,6 @@
 //! The `render` binary tests (nesting, runaway SL loops, hostile texture headers) need
 //! `cargo build -p render`.
 use illume_ri::{Diagnostic, Frame, Severity};
-use std::path::{Path, PathBuf};
-use std::process::Command;
 
 mod support;
 
@@ -145,19 +143,36 @@ fn past_the_memory_limit_the_rest_of_the_world_is_culled_with_one_error() {
 
 #[test]
 fn instances_count_against_the_memory_limit_too() {
+    // Each under its own attributes: one frame primitive (1024 bytes) each.
     let rib = format!(
         "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [976]\n\
          WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\nObjectEnd\n{}WorldEnd\n",
-        "ObjectInstance 1\n".repeat(100)
+        "AttributeBegin Color [1 0 0] ObjectInstance 1 AttributeEnd\n".repeat(100)
     );
     let (frames, diags) = parse(&rib);
     // (1024 - 976) KB / 1024 bytes = 48 instances.
     let e = find(&diags, Severity::Error, "\"memory\"");
     assert!(
-        e.starts_with("test.rib:55:1: error: ObjectInstance:"),
+        e.starts_with("test.rib:55:30: error: ObjectInstance:"),
         "{e}"
     );
     assert_eq!(frames[0].primitives.len(), 48);
+    // In a run (one batch): the first as a primitive, the others a 128-byte placement each.
+    let rib = format!(
+        "Option \"limits\" \"memory\" [1]\nOption \"limits\" \"texturememory\" [976]\n\
+         WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\nObjectEnd\n{}WorldEnd\n",
+        "ObjectInstance 1\n".repeat(1000)
+    );
+    let (frames, diags) = parse(&rib);
+    // 1 + (48 KB - 1024) / 128 = 377 instances; the 378th is on line 6 + 378.
+    let e = find(&diags, Severity::Error, "\"memory\"");
+    assert!(
+        e.starts_with("test.rib:384:1: error: ObjectInstance:"),
+        "{e}"
+    );
+    assert_eq!(frames[0].primitives.len(), 1);
+    let batch = format!("{:?}", frames[0].primitives[0].primitive);
+    assert!(batch.contains("instances: 377"), "{batch}");
 }
 
 #[test]
@@ -171,33 +186,12 @@ fn a_bad_limit_value_is_an_error_and_keeps_the_default() {
 
 // ---- through the `render` binary ---------------------------------------------------------
 
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("illume-limits-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Runs `render -q file` in `dir`; returns (exit code, stderr).
-fn render(bin: &Path, dir: &Path, file: &str) -> (i32, String) {
-    let out = Command::new(bin)
-        .current_dir(dir)
-        .args(["-q", "--threads", "1", file])
-        .output()
-        .unwrap();
-    let code = out
-        .status
-        .code()
-        .expect("render exited by itself, not by a signal");
-    (code, String::from_utf8_lossy(&out.stderr).into_owned())
-}
-
 #[test]
 fn an_archive_that_reads_itself_ends_with_an_error_not_a_stack_overflow() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return; // skipped loudly; a failure under CI=true
     };
-    let dir = scratch("archive");
+    let dir = illume_testenv::scratch_dir("limits", "archive");
     std::fs::write(
         dir.join("self.rib"),
         "Sphere 1 -1 1 360\nReadArchive \"self.rib\"\n",
@@ -206,7 +200,7 @@ fn an_archive_that_reads_itself_ends_with_an_error_not_a_stack_overflow() {
     let scene = "Format 16 16 1\nDisplay \"out.tif\" \"file\" \"rgba\"\nWorldBegin\n\
                  ReadArchive \"self.rib\"\nWorldEnd\n";
     std::fs::write(dir.join("scene.rib"), scene).unwrap();
-    let (code, err) = render(&bin, &dir, "scene.rib");
+    let (code, err) = illume_testenv::render_in(&bin, &dir, "scene.rib");
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("self.rib:2:1: error: ReadArchive"), "{err}");
     assert!(err.contains("\"nesting\" 64"), "{err}");
@@ -219,7 +213,7 @@ fn a_shader_that_loops_forever_is_stopped_with_an_error_naming_it() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return;
     };
-    let dir = scratch("loop");
+    let dir = illume_testenv::scratch_dir("limits", "loop");
     // Nested: the inner loop alone stops at 65536, the outer one must stop with it.
     let sl = "surface spin()\n{\n    float i = 0;\n    while (1) {\n        while (i >= 0) {\n\
               i += 1;\n        }\n    }\n    Ci = color(i);\n}\n";
@@ -229,7 +223,7 @@ fn a_shader_that_loops_forever_is_stopped_with_an_error_naming_it() {
                  Translate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
     std::fs::write(dir.join("scene.rib"), scene).unwrap();
     let t = std::time::Instant::now();
-    let (code, err) = render(&bin, &dir, "scene.rib");
+    let (code, err) = illume_testenv::render_in(&bin, &dir, "scene.rib");
     assert_eq!(code, 1, "{err}");
     // Named at the inner loop statement of the shader's source, not at `<internal>:0:0`.
     assert!(
@@ -247,7 +241,7 @@ fn shader_run_time_warnings_name_the_statement_in_the_shader_source() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return;
     };
-    let dir = scratch("slwarn");
+    let dir = illume_testenv::scratch_dir("limits", "slwarn");
     let sl = "surface lost()\n{\n    point q = transform(\"nowhere\", P);\n    \
               Ci = color(1, 1, 1);\n    Oi = 1;\n\n        q = transform(\"elsewhere\", q);\n}\n";
     std::fs::write(dir.join("lost.sl"), sl).unwrap();
@@ -255,7 +249,7 @@ fn shader_run_time_warnings_name_the_statement_in_the_shader_source() {
                  Projection \"perspective\" \"fov\" [30]\nWorldBegin\nSurface \"lost\"\n\
                  Translate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
     std::fs::write(dir.join("scene.rib"), scene).unwrap();
-    let (code, err) = render(&bin, &dir, "scene.rib");
+    let (code, err) = illume_testenv::render_in(&bin, &dir, "scene.rib");
     assert_eq!(code, 0, "{err}");
     for (line, col, space) in [(3, 5, "nowhere"), (7, 9, "elsewhere")] {
         let at = format!(
@@ -304,14 +298,14 @@ fn a_texture_claiming_a_million_pixels_a_side_is_refused_from_its_header() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return;
     };
-    let dir = scratch("texdims");
+    let dir = illume_testenv::scratch_dir("limits", "texdims");
     std::fs::write(dir.join("huge.tif"), hostile_tiff(1_000_000, 1_000_000)).unwrap();
     let scene = "Format 8 8 1\nDisplay \"out.tif\" \"file\" \"rgba\"\n\
                  MakeTexture \"huge.tif\" \"huge.tx\" \"periodic\" \"periodic\" \"box\" 1 1\n\
                  WorldBegin\nSurface \"paintedplastic\" \"texturename\" \"huge.tif\"\n\
                  Translate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
     std::fs::write(dir.join("scene.rib"), scene).unwrap();
-    let (code, err) = render(&bin, &dir, "scene.rib");
+    let (code, err) = illume_testenv::render_in(&bin, &dir, "scene.rib");
     // MakeTexture fails (an error at its line); the lookup warns once and renders without it.
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("scene.rib:3:1"), "{err}");

@@ -2,16 +2,9 @@
 //! display's name (nor a temporary file beside it), and a display that cannot be written is an
 //! error naming it while the frame's other displays are still written. Needs
 //! `cargo build -p render`.
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("illume-nolost-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Frames `1..=n`, each a cheap 1024² render written as a 16 MB float TIFF `frame<i>.tif`,
 /// so that writes take long enough to be caught half-way.
@@ -86,7 +79,7 @@ fn sigint_while_a_display_is_written_removes_it() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return; // skipped loudly; a failure under CI=true
     };
-    let dir = scratch("sigint");
+    let dir = illume_testenv::scratch_dir("nolost", "sigint");
     std::fs::write(dir.join("scene.rib"), slow_writes(50)).unwrap();
     let mut child = spawn(&bin, &dir, "scene.rib");
     let caught = wait_for(&dir, Duration::from_secs(120), |n| {
@@ -111,7 +104,7 @@ fn sigterm_mid_frame_leaves_only_finished_frames() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return;
     };
-    let dir = scratch("sigterm");
+    let dir = illume_testenv::scratch_dir("nolost", "sigterm");
     std::fs::write(dir.join("scene.rib"), slow_writes(50)).unwrap();
     let mut child = spawn(&bin, &dir, "scene.rib");
     // After the first frame is complete, stop wherever the renderer is.
@@ -127,25 +120,13 @@ fn sigterm_mid_frame_leaves_only_finished_frames() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-fn render(bin: &Path, dir: &Path, file: &str) -> (i32, String) {
-    let out = Command::new(bin)
-        .current_dir(dir)
-        .args(["-q", "--threads", "1", file])
-        .output()
-        .unwrap();
-    (
-        out.status.code().expect("render exited by itself"),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 /// Four displays of one frame: a missing directory, a read-only file, then two good ones.
 #[test]
 fn unwritable_displays_are_errors_naming_them_and_the_others_are_written() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return;
     };
-    let dir = scratch("unwritable");
+    let dir = illume_testenv::scratch_dir("nolost", "unwritable");
     std::fs::write(dir.join("locked.tif"), b"keep me").unwrap();
     let mut perm = std::fs::metadata(dir.join("locked.tif"))
         .unwrap()
@@ -157,7 +138,7 @@ fn unwritable_displays_are_errors_naming_them_and_the_others_are_written() {
                  Display \"+c.png\" \"png\" \"rgb\"\nWorldBegin\nTranslate 0 0 5\n\
                  Sphere 1 -1 1 360\nWorldEnd\n";
     std::fs::write(dir.join("scene.rib"), scene).unwrap();
-    let (code, err) = render(&bin, &dir, "scene.rib");
+    let (code, err) = illume_testenv::render_in(&bin, &dir, "scene.rib");
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("no/such/dir/a.tif"), "{err}");
     assert!(
@@ -179,7 +160,7 @@ fn a_full_disk_is_an_error_naming_the_file_and_leaves_nothing_there() {
     let Some(bin) = illume_testenv::require_built("render", "RENDER") else {
         return;
     };
-    let dir = scratch("fulldisk");
+    let dir = illume_testenv::scratch_dir("nolost", "fulldisk");
     let small = dir.join("small");
     std::fs::create_dir_all(&small).unwrap();
     let mounted = Command::new("mount")
@@ -195,7 +176,7 @@ fn a_full_disk_is_an_error_naming_the_file_and_leaves_nothing_there() {
                  Display \"small/big.tif\" \"file\" \"rgba\"\nDisplay \"+ok.tif\" \"file\" \"rgba\"\n\
                  WorldBegin\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
     std::fs::write(dir.join("scene.rib"), scene).unwrap();
-    let (code, err) = render(&bin, &dir, "scene.rib");
+    let (code, err) = illume_testenv::render_in(&bin, &dir, "scene.rib");
     let left = names(&small);
     let _ = Command::new("umount").arg(&small).status();
     assert_eq!(code, 1, "{err}");

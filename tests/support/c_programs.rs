@@ -12,12 +12,40 @@ pub struct Tools {
 }
 
 pub fn tools() -> Option<Tools> {
+    let lib = illume_testenv::require_built("libillume.a", "LIBILLUME")?;
+    if let Some(newer) = newer_source(&lib) {
+        panic!(
+            "{} is older than {}: run `cargo build -p libillume` (cargo test does not rebuild \
+             the C library, and a stale one fails these tests with confusing differences)",
+            lib.display(),
+            newer.display()
+        );
+    }
     Some(Tools {
         cc: illume_testenv::require_tool("cc")?,
-        lib: illume_testenv::require_built("libillume.a", "LIBILLUME")?,
+        lib,
         render: illume_testenv::require_built("render", "RENDER")?,
         catrib: illume_testenv::require_built("catrib", "CATRIB")?,
     })
+}
+
+/// A source file of this workspace that went into `lib` (cargo's dep-info beside it,
+/// `libillume.d`) and was modified after `lib` was written; `None` when the library is up to
+/// date or there is no dep-info to judge by. Dep-info paths are those of the checkout that
+/// built it: each is taken relative to its `crates/` folder in this checkout.
+pub fn newer_source(lib: &Path) -> Option<PathBuf> {
+    let built = std::fs::metadata(lib).and_then(|m| m.modified()).ok()?;
+    let info = std::fs::read_to_string(lib.with_extension("d")).ok()?;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    info.lines()
+        .filter_map(|l| l.split_once(": ").map(|(_, deps)| deps))
+        .flat_map(str::split_whitespace)
+        .filter_map(|dep| dep.find("/crates/").map(|i| root.join(&dep[i + 1..])))
+        .find(|src| {
+            std::fs::metadata(src)
+                .and_then(|m| m.modified())
+                .is_ok_and(|t| t > built)
+        })
 }
 
 pub fn scratch(name: &str) -> PathBuf {

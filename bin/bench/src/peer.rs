@@ -101,13 +101,11 @@ pub fn variant(rib: &str, edits: &[(&str, &str)], scale: u32) -> Result<(String,
     for (n, line) in text.lines().enumerate() {
         let words: Vec<&str> = line.split_whitespace().collect();
         if let ["Format", w, h, rest @ ..] = words.as_slice() {
-            let bad = || format!("line {}: bad Format: {line}", n + 1);
-            let w: u64 = w.parse().map_err(|_| bad())?;
-            let h: u64 = h.parse().map_err(|_| bad())?;
-            let (w, h) = (w * u64::from(scale), h * u64::from(scale));
-            pixels = Some(w * h);
+            let (format, count) = crate::scene::multiplied_format(line, w, h, rest, scale)
+                .map_err(|e| format!("line {}: {e}", n + 1))?;
+            pixels = Some(count);
             let indent = &line[..line.len() - line.trim_start().len()];
-            let _ = writeln!(out, "{indent}Format {w} {h} {}", rest.join(" "));
+            let _ = writeln!(out, "{indent}{format}");
         } else {
             out.push_str(line);
             out.push('\n');

@@ -2,8 +2,7 @@
 //! `ArchiveBegin` record requests, `ObjectInstance` and `ReadArchive` replay them or read a
 //! file. `ReadArchive` is textual inclusion; instances and procedurals run inside an attribute
 //! block that closes whatever they left open (see [`Scope`]).
-use crate::frame::FramePrimitive;
-use crate::instance::{InstancePrimitive, SharedObject};
+use crate::instance::SharedObject;
 use crate::state::{BlockKind, Ri};
 use illume_rib::{Handle, Request, Span, Spanned};
 use std::io::Read;
@@ -123,18 +122,7 @@ impl Ri {
         }
         // The instance itself is what the frame keeps; its primitives exist only while the
         // hider works on the buckets it covers.
-        if self.charge_memory(crate::memory::PER_PRIMITIVE, span, "ObjectInstance") {
-            let primitive =
-                InstancePrimitive::new(object.clone(), self.ctm, self.attributes.clone());
-            self.primitives.push(FramePrimitive {
-                primitive: Box::new(primitive),
-                attributes: self.attributes.clone(),
-                span: span.clone(),
-                solid: None,
-                motion: None,
-                mirrored: object.mirrored(&self.ctm),
-            });
-        }
+        self.add_instance(&object, span);
         true
     }
 

@@ -84,6 +84,7 @@ impl Ri {
             _ => true,
         };
         self.primitives.clear();
+        self.instance_run = None;
         self.frame_bytes = 0;
         self.memory_exceeded = false;
     }
@@ -96,6 +97,7 @@ impl Ri {
         if let Some(c) = self.crop_override {
             options.crop = c;
         }
+        self.end_instance_run();
         let primitives = std::mem::take(&mut self.primitives);
         let solids = std::mem::take(&mut self.solids);
         self.open_solids.clear();

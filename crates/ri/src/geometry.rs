@@ -50,11 +50,15 @@ impl Ri {
         match self.ctm_motion.clone() {
             None => {
                 let prims = self.build_geometry(req, span, self.ctm).unwrap_or_default();
-                let bytes = crate::memory::request_bytes(req, prims.len());
+                // A deferred request is one primitive until the hider splits it (its faces
+                // then live only while their band of buckets renders).
+                let deferred = prims.len() >= DEFER_AT && self.open_solids.is_empty();
+                let counted = if deferred { 1 } else { prims.len() };
+                let bytes = crate::memory::request_bytes(req, counted);
                 if !self.charge_memory(bytes, span, req.name()) {
                     return;
                 }
-                if prims.len() >= DEFER_AT && self.open_solids.is_empty() {
+                if deferred {
                     self.defer(req, span, &prims);
                     return;
                 }
@@ -89,7 +93,7 @@ impl Ri {
         let Some(p) = SharedObject::deferred(self, request, self.ctm, built) else {
             return;
         };
-        self.primitives.push(FramePrimitive {
+        self.push_frame_primitive(FramePrimitive {
             primitive: Box::new(p),
             attributes: self.attributes.clone(),
             span: span.clone(),
@@ -201,7 +205,7 @@ impl Ri {
                     .map(|k| k.next().expect("same length checked"))
                     .collect(),
             });
-            self.primitives.push(FramePrimitive {
+            self.push_frame_primitive(FramePrimitive {
                 primitive: p,
                 attributes: self.attributes.clone(),
                 span: span.clone(),

@@ -193,6 +193,14 @@ impl SharedObject {
         ))
     }
 
+    /// The camera-space bound of an instance placed by `camera_from_object`.
+    pub(crate) fn bound_at(&self, camera_from_object: &DMat4) -> Bound {
+        if let Some(b) = self.camera_bound {
+            return b;
+        }
+        Bound::of_transformed_box(camera_from_object, self.lo, self.hi)
+    }
+
     /// Whether an instance placed by `camera_from_object` has a mirrored object space.
     pub(crate) fn mirrored(&self, camera_from_object: &DMat4) -> bool {
         (camera_from_object.determinant() < 0.0) != self.mirrors
@@ -255,10 +263,7 @@ impl InstancePrimitive {
 
 impl Primitive for InstancePrimitive {
     fn bound(&self) -> Bound {
-        if let Some(b) = self.object.camera_bound {
-            return b;
-        }
-        Bound::of_transformed_box(&self.camera_from_object, self.object.lo, self.object.hi)
+        self.object.bound_at(&self.camera_from_object)
     }
 
     fn diceable(&self) -> bool {

@@ -16,6 +16,7 @@ pub mod diagnostic;
 pub mod frame;
 mod geometry;
 mod instance;
+pub mod instance_batch;
 mod lights;
 mod make_texture;
 pub mod memory;

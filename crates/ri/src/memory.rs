@@ -6,8 +6,10 @@
 //! primitive (its `FramePrimitive`, the boxed surface and its variables, measured with
 //! heaptrack on 10⁵ spheres) plus its data (every number of its parameter lists and index arrays, counted
 //! twice: geometry converts positions to f64 or splits them into faces), plus the texture
-//! cache's own budget (`texturememory`). A shared object instance counts as one primitive: its
-//! object's primitives exist only while the hider works on the buckets it covers. Past the budget the primitive is culled with one
+//! cache's own budget (`texturememory`). A shared object instance counts as one primitive, or
+//! as one placement when it joins a run of instances (`instance_batch.rs`), and a mesh kept as
+//! its request as one primitive and its numbers: their primitives exist only while the hider
+//! works on the buckets they cover. Past the budget the primitive is culled with one
 //! error naming its `file:line:col`, and so is every later one of the same world (PRMan culls
 //! too); the frame still renders what fitted.
 use crate::state::Ri;
@@ -16,6 +18,10 @@ use illume_rib::{ParamList, Request, Span};
 /// Bytes one built primitive costs besides its data (see the module documentation): heaptrack
 /// counts 98.6 MB at the peak of 10⁵ spheres outside the crop window (986 bytes each).
 pub const PER_PRIMITIVE: u64 = 1024;
+
+/// Bytes an `ObjectInstance` costs when it joins a run of instances (`instance_batch.rs`):
+/// its placement's affine matrix (96 bytes), with room for the run's growth.
+pub const PER_PLACEMENT: u64 = 128;
 
 /// The parameter list of a geometry request.
 fn params(req: &Request) -> Option<&ParamList> {

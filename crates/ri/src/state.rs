@@ -76,6 +76,8 @@ pub struct Ri {
     pub(crate) coordinate_systems: HashMap<String, DMat4>,
     pub(crate) lights: Vec<Light>,
     pub(crate) primitives: Vec<FramePrimitive>,
+    /// Instances gathered into one frame primitive (`instance_batch.rs`), not pushed yet.
+    pub(crate) instance_run: Option<crate::instance_batch::InstanceRun>,
     /// This world's CSG solids, and the node each open `SolidBegin` stands for (a solid
     /// nested in a primitive solid stands for that primitive: its surfaces join it).
     pub(crate) solids: SolidTree,
@@ -123,6 +125,7 @@ impl Ri {
             coordinate_systems: HashMap::new(),
             lights: Vec::new(),
             primitives: Vec::new(),
+            instance_run: None,
             solids: SolidTree::default(),
             open_solids: Vec::new(),
             frame_number: None,

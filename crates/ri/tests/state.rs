@@ -142,7 +142,10 @@ fn inline_archive_and_object_instance_replay() {
     ]);
     assert_eq!(ri.error_count(), 0, "{:?}", ri.drain_diagnostics());
     let f = ri.take_frames();
-    assert_eq!(f[0].primitives.len(), 3);
+    // The archive's sphere, and the two instances in a row as one batch of two.
+    assert_eq!(f[0].primitives.len(), 2);
+    let batch = format!("{:?}", f[0].primitives[1].primitive);
+    assert!(batch.contains("instances: 2"), "{batch}");
 }
 
 #[test]

@@ -18,6 +18,9 @@
 
 use std::path::{Path, PathBuf};
 
+mod run;
+pub use run::{render_in, scratch_dir};
+
 /// True when the environment says this is a CI run (`CI` set to anything but empty, `0` or
 /// `false`; CI systems set `CI=true`, and `.ci/run` exports it for local runs too).
 pub fn in_ci() -> bool {
