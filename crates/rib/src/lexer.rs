@@ -171,6 +171,23 @@ pub(crate) fn parse_number(text: &[u8]) -> Result<Token, String> {
     }
 }
 
+/// A comment's text as the printer can write it back: invalid UTF-8 becomes U+FFFD, which
+/// takes three bytes where the bad byte took one, so the text is cut again (at a character
+/// boundary) to what fits a `##` line of [`MAX_COMMENT`] bytes; without that cut, a printed
+/// comment would be read back shorter than it was printed (a fuzzing finding). A trailing
+/// `\r` (a CRLF line end) is dropped.
+fn comment_text(raw: &[u8]) -> String {
+    let mut text = String::from_utf8_lossy(raw).into_owned();
+    let mut end = text.len().min(MAX_COMMENT - 2);
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    text.truncate(end);
+    let kept = text.trim_end_matches('\r').len();
+    text.truncate(kept);
+    text
+}
+
 /// The UTF-8 encoding of U+FEFF.
 const UTF8_BOM: &[u8] = &[0xef, 0xbb, 0xbf];
 
@@ -401,9 +418,7 @@ impl<R: Read> Lexer<R> {
                 let len = end.unwrap_or(rest.len()).min(MAX_COMMENT);
                 let structural = rest.get(1) == Some(&b'#');
                 let skip = if structural { 2 } else { 1 };
-                let body = String::from_utf8_lossy(&rest[skip.min(len)..len])
-                    .trim_end_matches('\r')
-                    .to_string();
+                let body = comment_text(&rest[skip.min(len)..len]);
                 if let Some(c) = &mut self.comments {
                     c.push((structural, body.clone()));
                 }
