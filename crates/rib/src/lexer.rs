@@ -11,8 +11,11 @@ use std::collections::HashMap;
 use std::io::{self, Read};
 use std::sync::Arc;
 
-/// Bytes requested from the reader per refill.
+/// Bytes requested from the reader per refill, at most.
 const CHUNK: usize = 256 * 1024;
+/// Bytes requested by the first refill; each refill doubles it up to [`CHUNK`]. Zeroing and
+/// mapping a 256 KiB buffer for a 100-byte archive (or fuzz input) cost more than parsing it.
+const FIRST_CHUNK: usize = 4096;
 /// Longest number or name token; anything longer is corrupt input, not a RIB token.
 const MAX_WORD: usize = 4096;
 /// Longest string: beyond this an unterminated string would swallow the whole file.
@@ -93,6 +96,8 @@ pub(crate) struct Lexer<R> {
     requests: HashMap<u8, Arc<str>>,
     /// Binary string definitions (0315/0316): token → string.
     strings: HashMap<u16, String>,
+    /// Bytes the next refill asks for: [`FIRST_CHUNK`], doubling up to [`CHUNK`].
+    chunk: usize,
 }
 
 /// Byte classes for the word scanners, as a table: the hot loop of the whole parser.
@@ -195,7 +200,7 @@ impl<R: Read> Lexer<R> {
     pub(crate) fn new(reader: R) -> Self {
         Lexer {
             reader,
-            buf: Vec::with_capacity(CHUNK),
+            buf: Vec::new(),
             pos: 0,
             base: 0,
             eof: false,
@@ -207,6 +212,7 @@ impl<R: Read> Lexer<R> {
             quiet: false,
             requests: HashMap::new(),
             strings: HashMap::new(),
+            chunk: FIRST_CHUNK,
         }
     }
 
@@ -275,7 +281,8 @@ impl<R: Read> Lexer<R> {
             self.pos -= keep_from;
         }
         let old = self.buf.len();
-        self.buf.resize(old + CHUNK, 0);
+        self.buf.resize(old + self.chunk, 0);
+        self.chunk = (2 * self.chunk).min(CHUNK);
         loop {
             match self.reader.read(&mut self.buf[old..]) {
                 Ok(0) => {
