@@ -38,7 +38,15 @@ fn finite() -> impl Strategy<Value = f32> {
     prop_oneof![
         any::<u32>().prop_map(f32::from_bits),
         any::<i32>().prop_map(|i| i as f32),
-        prop::sample::select(vec![0.0f32, -0.0, f32::MIN_POSITIVE, 1e-45, f32::MAX, 1e9, -1e9]),
+        prop::sample::select(vec![
+            0.0f32,
+            -0.0,
+            f32::MIN_POSITIVE,
+            1e-45,
+            f32::MAX,
+            1e9,
+            -1e9
+        ]),
     ]
     .prop_filter("finite", |f| f.is_finite())
 }
