@@ -104,7 +104,10 @@ fn parse_rib() {
         })
         .collect();
     seeds.extend(extra);
-    smoke("parse_rib", illume_fuzz::parse_rib, &seeds, &[], 4000);
+    // The third runs' finding: a `##` comment of invalid UTF-8 near the 4096-byte cap grew
+    // past it when printed (each bad byte a 3-byte U+FFFD) and read back shorter.
+    let crashes = regressions("crates/rib", "parse_rib_");
+    smoke("parse_rib", illume_fuzz::parse_rib, &seeds, &crashes, 4000);
 }
 
 #[test]

@@ -11,8 +11,11 @@ use std::collections::HashMap;
 use std::io::{self, Read};
 use std::sync::Arc;
 
-/// Bytes requested from the reader per refill.
+/// Bytes requested from the reader per refill, at most.
 const CHUNK: usize = 256 * 1024;
+/// Bytes requested by the first refill; each refill doubles it up to [`CHUNK`]. Zeroing and
+/// mapping a 256 KiB buffer for a 100-byte archive (or fuzz input) cost more than parsing it.
+const FIRST_CHUNK: usize = 4096;
 /// Longest number or name token; anything longer is corrupt input, not a RIB token.
 const MAX_WORD: usize = 4096;
 /// Longest string: beyond this an unterminated string would swallow the whole file.
@@ -93,6 +96,8 @@ pub(crate) struct Lexer<R> {
     requests: HashMap<u8, Arc<str>>,
     /// Binary string definitions (0315/0316): token → string.
     strings: HashMap<u16, String>,
+    /// Bytes the next refill asks for: [`FIRST_CHUNK`], doubling up to [`CHUNK`].
+    chunk: usize,
 }
 
 /// Byte classes for the word scanners, as a table: the hot loop of the whole parser.
@@ -171,6 +176,23 @@ pub(crate) fn parse_number(text: &[u8]) -> Result<Token, String> {
     }
 }
 
+/// A comment's text as the printer can write it back: invalid UTF-8 becomes U+FFFD, which
+/// takes three bytes where the bad byte took one, so the text is cut again (at a character
+/// boundary) to what fits a `##` line of [`MAX_COMMENT`] bytes; without that cut, a printed
+/// comment would be read back shorter than it was printed (a fuzzing finding). A trailing
+/// `\r` (a CRLF line end) is dropped.
+fn comment_text(raw: &[u8]) -> String {
+    let mut text = String::from_utf8_lossy(raw).into_owned();
+    let mut end = text.len().min(MAX_COMMENT - 2);
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    text.truncate(end);
+    let kept = text.trim_end_matches('\r').len();
+    text.truncate(kept);
+    text
+}
+
 /// The UTF-8 encoding of U+FEFF.
 const UTF8_BOM: &[u8] = &[0xef, 0xbb, 0xbf];
 
@@ -178,7 +200,7 @@ impl<R: Read> Lexer<R> {
     pub(crate) fn new(reader: R) -> Self {
         Lexer {
             reader,
-            buf: Vec::with_capacity(CHUNK),
+            buf: Vec::new(),
             pos: 0,
             base: 0,
             eof: false,
@@ -190,6 +212,7 @@ impl<R: Read> Lexer<R> {
             quiet: false,
             requests: HashMap::new(),
             strings: HashMap::new(),
+            chunk: FIRST_CHUNK,
         }
     }
 
@@ -258,7 +281,8 @@ impl<R: Read> Lexer<R> {
             self.pos -= keep_from;
         }
         let old = self.buf.len();
-        self.buf.resize(old + CHUNK, 0);
+        self.buf.resize(old + self.chunk, 0);
+        self.chunk = (2 * self.chunk).min(CHUNK);
         loop {
             match self.reader.read(&mut self.buf[old..]) {
                 Ok(0) => {
@@ -401,9 +425,7 @@ impl<R: Read> Lexer<R> {
                 let len = end.unwrap_or(rest.len()).min(MAX_COMMENT);
                 let structural = rest.get(1) == Some(&b'#');
                 let skip = if structural { 2 } else { 1 };
-                let body = String::from_utf8_lossy(&rest[skip.min(len)..len])
-                    .trim_end_matches('\r')
-                    .to_string();
+                let body = comment_text(&rest[skip.min(len)..len]);
                 if let Some(c) = &mut self.comments {
                     c.push((structural, body.clone()));
                 }
