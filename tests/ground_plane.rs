@@ -1,20 +1,34 @@
 //! Issue 21: a ground plane that reaches behind the eye and far outside the screen window (as
 //! exporters write them) must dice about as many micropolygons as the pixels it covers, not
 //! the millions its off-screen and near-eye parts would make, and must still render exactly
-//! where it is seen. The same floor as a `NuPatch` (whose sub-range bounds were the whole
-//! patch: no piece was ever culled off screen), a bilinear `Patch` and a `Polygon`.
+//! where it is seen (checked against an f64 ray cast, so a fix that culls too much fails).
+//! The same floor as a `NuPatch` (whose sub-range bounds were the whole patch: no piece was
+//! ever culled off screen), a bilinear `Patch` and a `Polygon`.
+use glam::DVec3;
 use illume_render::{render, RenderSettings};
 mod support;
 
 const W: usize = 64;
 const H: usize = 48;
-/// The floor's height below the eye, its far edge and the surface colour.
-const DROP: f64 = 1.0;
-const FAR: f64 = 100.0;
 const COLOUR: [f64; 3] = [0.2, 0.6, 0.9];
+/// The camera looks this far down (degrees) at the floor `y = −1`.
+const PITCH: f64 = 40.0;
 
-/// The floor `y = −1` (camera space), `x ∈ [−100, 100]`, `z ∈ [−50, 100]`: it crosses the eye
-/// plane, and its sides project far outside the 60° frame.
+/// The floor's corners in camera space: world `x ∈ [−100, 0.5]`, `z ∈ [−50, 100]` on `y = −1`,
+/// seen by a camera pitched down. It crosses the eye plane (world `z ≈ −0.84`), its left side
+/// and both ends project far outside the 60° frame, and its right side `x = 0.5` crosses the
+/// frame as a slanted edge.
+fn corners() -> [DVec3; 4] {
+    let (s, c) = PITCH.to_radians().sin_cos();
+    let cam = |x: f64, z: f64| DVec3::new(x, -c + z * s, s + z * c);
+    [
+        cam(-100.0, -50.0),
+        cam(0.5, -50.0),
+        cam(-100.0, 100.0),
+        cam(0.5, 100.0),
+    ]
+}
+
 fn scene(floor: &str) -> String {
     format!(
         "Format {W} {H} 1\nPixelSamples 4 4\nPixelFilter \"box\" 1 1\nShadingRate 1\n\
@@ -24,39 +38,75 @@ fn scene(floor: &str) -> String {
     )
 }
 
-const FLOORS: [(&str, &str); 3] = [
-    (
-        "NuPatch",
-        "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" \
-         [-100 -1 -50 1  100 -1 -50 1  -100 -1 100 1  100 -1 100 1]",
-    ),
-    (
-        "Patch",
-        "Patch \"bilinear\" \"P\" [-100 -1 -50  100 -1 -50  -100 -1 100  100 -1 100]",
-    ),
-    (
-        "Polygon",
-        "Polygon \"P\" [-100 -1 -50  100 -1 -50  100 -1 100  -100 -1 100]",
-    ),
-];
+fn floors() -> [(&'static str, String); 3] {
+    let [a, b, c, d] = corners();
+    let p = |q: DVec3| format!("{} {} {}", q.x, q.y, q.z);
+    [
+        (
+            "NuPatch",
+            format!(
+                "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [{} 1 {} 1 {} 1 {} 1]",
+                p(a),
+                p(b),
+                p(c),
+                p(d)
+            ),
+        ),
+        (
+            "Patch",
+            format!("Patch \"bilinear\" \"P\" [{} {} {} {}]", p(a), p(b), p(c), p(d)),
+        ),
+        (
+            "Polygon",
+            format!("Polygon \"P\" [{} {} {} {}]", p(a), p(b), p(d), p(c)),
+        ),
+    ]
+}
 
-/// The fraction of pixel row `row` the floor covers, in closed form: a floor point at depth
-/// `z > 0` projects to screen `y = −DROP·d/z` (`d = 1/tan 30°`), so the floor covers the screen
-/// below `y = −DROP·d/FAR` (its far edge) and all of the width (its sides project beyond
-/// `|x| = d·100/z ≥ 1.73` for every visible depth). Rows span 2/H of screen `y`, top = +1.
-fn row_coverage(row: usize) -> f64 {
-    let d = 1.0 / (30f64).to_radians().tan();
-    let edge = -DROP * d / FAR;
-    let (top, bottom) = (1.0 - 2.0 * row as f64 / H as f64, 1.0 - 2.0 * (row + 1) as f64 / H as f64);
-    ((edge - bottom) / (top - bottom)).clamp(0.0, 1.0)
+/// The fraction of pixel `(x, y)` the floor covers, by an f64 ray cast through 16 × 16 points
+/// of the pixel: the ray `t·(sx/d, sy/d, 1)` (`d = 1/tan 30°`, screen `x ∈ [−4/3, 4/3]`,
+/// `y ∈ [−1, 1]` up) meets the floor's plane at `t > 0.01` (the hither plane) inside the
+/// parallelogram of [`corners`].
+fn coverage(x: usize, y: usize) -> f64 {
+    let [a, b, c, _] = corners();
+    let (eu, ev) = (b - a, c - a);
+    let n = eu.cross(ev);
+    let d = 1.0 / 30f64.to_radians().tan();
+    let mut hits = 0;
+    for j in 0..16 {
+        for i in 0..16 {
+            let px = x as f64 + (i as f64 + 0.5) / 16.0;
+            let py = y as f64 + (j as f64 + 0.5) / 16.0;
+            let sx = -4.0 / 3.0 + px / W as f64 * 8.0 / 3.0;
+            let sy = 1.0 - py / H as f64 * 2.0;
+            let dir = DVec3::new(sx / d, sy / d, 1.0);
+            let t = n.dot(a) / n.dot(dir);
+            if !(t > 0.01) {
+                continue;
+            }
+            let q = dir * t - a;
+            // Parallelogram coordinates: q = u·eu + v·ev.
+            let (uu, uv, vv) = (eu.dot(eu), eu.dot(ev), ev.dot(ev));
+            let (qu, qv) = (q.dot(eu), q.dot(ev));
+            let det = uu * vv - uv * uv;
+            let u = (qu * vv - qv * uv) / det;
+            let v = (qv * uu - qu * uv) / det;
+            if (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v) {
+                hits += 1;
+            }
+        }
+    }
+    f64::from(hits) / 256.0
 }
 
 #[test]
 fn a_ground_plane_through_the_eye_plane_dices_about_its_visible_pixels() {
-    // Pixel area the floor covers: ~1,510 of the 3,072.
-    let visible: f64 = (0..H).map(row_coverage).sum::<f64>() * W as f64;
-    for (name, floor) in FLOORS {
-        let frame = &support::frames(&scene(floor), None)[0];
+    let cover: Vec<f64> = (0..H * W).map(|k| coverage(k % W, k / W)).collect();
+    let visible: f64 = cover.iter().sum();
+    // The floor's edge crosses the frame: some pixels are off it, some on.
+    assert!(visible > 0.3 * (W * H) as f64 && visible < 0.9 * (W * H) as f64);
+    for (name, floor) in floors() {
+        let frame = &support::frames(&scene(&floor), None)[0];
         let r = render(frame, &RenderSettings::default());
         assert_eq!((r.width as usize, r.height as usize), (W, H));
         let mp = r.stats.micropolygons;
@@ -64,34 +114,33 @@ fn a_ground_plane_through_the_eye_plane_dices_about_its_visible_pixels() {
             "{name}: {mp} micropolygons, {} grids, {} culled pieces for {visible:.0} visible pixels",
             r.stats.grids, r.stats.culled_pieces
         );
-        // k = 4: a grid's micropolygons are ShadingRate (1 pixel) in area along its longest
-        // row and column, so a foreshortened piece (its far row shorter than its near row,
-        // by up to 2× before it splits again) dices up to ~2× finer, and pieces straddling the
-        // frame's edges dice their off-screen part too (up to ~2× more near the horizon,
-        // where the grids are wide and thin). Before the fix the NuPatch diced 60× this.
+        // k = 4: a grid's micropolygons are ShadingRate (1 pixel) long along its longest row
+        // and column, so a foreshortened piece (its far row shorter than its near row, up to
+        // ~2× before it splits again) dices up to ~2× more finely than its area needs, and
+        // a piece may dice its off-screen part while less than half of it lies outside
+        // (`refine::mostly_outside`), up to ~2× more. Before the fix the NuPatch diced ~60×.
         assert!(
             (mp as f64) <= 4.0 * visible,
             "{name}: {mp} micropolygons for {visible:.0} visible pixels"
         );
-        // Where the floor is seen the image is its colour times the coverage: exact in rows
-        // entirely on or off the floor, within 0.3 in the row the far edge crosses (4 jittered
-        // sample rows estimate a coverage of 0.41). A fix that culls too much fails here.
+        // The image is the colour times the coverage: within 1e-4 where the ray cast sees all
+        // or nothing, within 0.3 on the edge (16 jittered samples against 256 rays).
         for y in 0..H {
-            let want = row_coverage(y);
-            let tol = if want == 0.0 || want == 1.0 { 1e-4 } else { 0.3 };
             for x in 0..W {
+                let want = cover[y * W + x];
+                let tol = if want == 0.0 || want == 1.0 { 1e-4 } else { 0.3 };
                 let px = &r.rgba[(y * W + x) * 4..][..4];
                 let alpha = f64::from(px[3]);
                 assert!(
                     (alpha - want).abs() <= tol,
-                    "{name}: pixel ({x}, {y}) alpha {alpha}, closed form {want}"
+                    "{name}: pixel ({x}, {y}) alpha {alpha}, ray cast {want}"
                 );
-                for c in 0..3 {
+                for (c, &colour) in COLOUR.iter().enumerate() {
                     let got = f64::from(px[c]);
                     assert!(
-                        (got - COLOUR[c] * alpha).abs() <= 1e-4,
+                        (got - colour * alpha).abs() <= 1e-4,
                         "{name}: pixel ({x}, {y}) channel {c} = {got}, colour × alpha {}",
-                        COLOUR[c] * alpha
+                        colour * alpha
                     );
                 }
             }

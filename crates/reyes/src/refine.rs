@@ -26,6 +26,9 @@ pub(crate) fn motion_factor(blur: f64) -> f64 {
 
 /// Splitting deeper than this drops the piece (a degenerate primitive must not hang).
 const MAX_SPLIT_DEPTH: u32 = 48;
+/// A piece mostly outside the region is split rather than diced once its grid would have
+/// more micropolygons than this, so the outside part is culled instead of diced.
+const MIN_OFF_SCREEN_SPLIT: usize = 16;
 /// Vertices per side of the coarse test dice used to measure raster size.
 const TEST_DICE: usize = 5;
 
@@ -107,7 +110,7 @@ impl<'a> Item<'a> {
             path,
         } = self;
         let eye_splits = eye_splits + u32::from(eye_split);
-        split_keys(&prim, &later)
+        split_keys(&prim, &later, eye_split)
             .into_iter()
             .enumerate()
             .map(move |(i, (prim, later))| {
@@ -144,13 +147,19 @@ pub(crate) struct Refiner<'c> {
     pub lens: Option<crate::lens::Lens>,
 }
 
-/// Splits a piece and its motion keys alike (the first key chooses the cut); keys that split
-/// into a different number of children are dropped (the piece stops moving).
+/// Splits a piece and its motion keys alike (the first key chooses the cut, across its depth
+/// for an eye split); keys that split into a different number of children are dropped (the
+/// piece stops moving).
 fn split_keys<'a>(
     prim: &PrimRef<'a>,
     later: &[PrimRef<'a>],
+    eye_split: bool,
 ) -> Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)> {
-    let choice = prim.get().split_choice();
+    let choice = if eye_split {
+        prim.get().eye_split_choice()
+    } else {
+        prim.get().split_choice()
+    };
     let children = prim.get().split_as(choice);
     let mut keys: Vec<Vec<Box<dyn Primitive>>> =
         later.iter().map(|k| k.get().split_as(choice)).collect();
@@ -279,7 +288,10 @@ impl Refiner<'_> {
         }
         let defocus = self.defocus(&b);
         let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs, defocus);
-        if (nu - 1) * (nv - 1) > self.grid_size && item.depth + 1 < MAX_SPLIT_DEPTH {
+        let micropolygons = (nu - 1) * (nv - 1);
+        let too_big = micropolygons > self.grid_size
+            || (micropolygons > MIN_OFF_SCREEN_SPLIT && self.mostly_outside(&raster));
+        if too_big && item.depth + 1 < MAX_SPLIT_DEPTH {
             for child in item.split(false) {
                 self.refine(child, attrs, defer, out);
             }
@@ -296,6 +308,20 @@ impl Refiner<'_> {
             prim_index: item.prim_index,
             path: item.path.into_boxed_slice(),
         });
+    }
+
+    /// Whether less than half of a raster bound (grown by a pixel, so slivers count) lies
+    /// in the region. Why: a piece's dice rate comes from its whole projected size, so a
+    /// ground plane's far strip, a few pixels tall but reaching far past both sides of the
+    /// frame, would dice mostly off screen (8× the micropolygons of the pixels it covers in
+    /// `tests/ground_plane.rs`); split, its outside halves are culled.
+    fn mostly_outside(&self, raster: &[f32; 4]) -> bool {
+        let r = &self.region;
+        let inside = |lo: f32, hi: f32, rlo: f32, rhi: f32| (hi.min(rhi) - lo.max(rlo)).max(0.0);
+        let iw = inside(raster[0], raster[1], r[0], r[1]);
+        let ih = inside(raster[2], raster[3], r[2], r[3]);
+        let (w, h) = (raster[1] - raster[0], raster[3] - raster[2]);
+        (iw + 1.0) * (ih + 1.0) < 0.5 * (w + 1.0) * (h + 1.0)
     }
 
     /// Raster x0 x1 y0 y1 of the box's corners (those in front of the eye).
