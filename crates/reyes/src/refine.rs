@@ -99,8 +99,9 @@ impl<'a> Item<'a> {
         }
     }
 
-    /// The children of one split, each one level deeper.
-    fn split(self, eye_split: bool) -> impl Iterator<Item = Item<'a>> {
+    /// The children of one split, each one level deeper; an eye split gives the
+    /// `displacementbound` padding and the eye plane's depth ([`eye_split_choice`]).
+    fn split(self, eye_split: Option<(f32, f64)>) -> impl Iterator<Item = Item<'a>> {
         let Item {
             prim,
             later,
@@ -109,7 +110,7 @@ impl<'a> Item<'a> {
             depth,
             path,
         } = self;
-        let eye_splits = eye_splits + u32::from(eye_split);
+        let eye_splits = eye_splits + u32::from(eye_split.is_some());
         split_keys(&prim, &later, eye_split)
             .into_iter()
             .enumerate()
@@ -153,12 +154,12 @@ pub(crate) struct Refiner<'c> {
 fn split_keys<'a>(
     prim: &PrimRef<'a>,
     later: &[PrimRef<'a>],
-    eye_split: bool,
+    eye_split: Option<(f32, f64)>,
 ) -> Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)> {
-    let choice = if eye_split {
-        prim.get().eye_split_choice()
-    } else {
-        prim.get().split_choice()
+    let choice = prim.get().split_choice();
+    let choice = match eye_split {
+        Some(pad) => eye_split_choice(prim.get(), choice, pad),
+        None => choice,
     };
     let children = prim.get().split_as(choice);
     let mut keys: Vec<Vec<Box<dyn Primitive>>> =
@@ -177,6 +178,30 @@ fn split_keys<'a>(
             (PrimRef::Owned(c), ks)
         })
         .collect()
+}
+
+/// How to cut a piece whose bound (padded by `pad.0`) crosses the eye plane `z = pad.1`: the
+/// primitive's usual cut (its longer side) or its cut across depth, whichever leaves fewer
+/// children crossing (ties: the usual one). A ground plane, wider than deep, cut along its
+/// width never separates what is in front of the eye from what is behind and runs out of eye
+/// splits, losing visible pieces; a sphere padded across the eye plane by a large
+/// `displacementbound` shrinks its padded bounds fastest along its longer side.
+fn eye_split_choice(prim: &dyn Primitive, usual: u8, (pad, eye_z): (f32, f64)) -> u8 {
+    let across = prim.eye_split_choice();
+    if across == usual {
+        return usual;
+    }
+    let crossing = |choice: u8| {
+        prim.split_as(choice)
+            .iter()
+            .filter(|c| f64::from(c.bound().padded(pad).min.z) < eye_z)
+            .count()
+    };
+    if crossing(across) < crossing(usual) {
+        across
+    } else {
+        usual
+    }
 }
 
 #[derive(Default)]
@@ -247,6 +272,9 @@ impl Refiner<'_> {
         for k in &item.later {
             b = b.union(k.get().bound());
         }
+        // The surface itself, before displacement padding and lens blur, for the dice
+        // decision: a piece padded by a large `displacementbound` is not mostly off screen.
+        let surface = b;
         let b = b.padded(attrs.displacement_bound);
         if b.is_empty() || self.outside_frustum(&b) {
             counts.culled += 1;
@@ -262,7 +290,7 @@ impl Refiner<'_> {
                 counts.eye_dropped += 1;
                 return;
             }
-            for child in item.split(true) {
+            for child in item.split(Some((attrs.displacement_bound, self.eye_z()))) {
                 self.refine(child, attrs, defer, out);
             }
             return;
@@ -273,7 +301,7 @@ impl Refiner<'_> {
             return;
         }
         if !item.prim.get().diceable() {
-            for child in item.split(false) {
+            for child in item.split(None) {
                 self.refine(child, attrs, defer, out);
             }
             return;
@@ -288,11 +316,12 @@ impl Refiner<'_> {
         }
         let defocus = self.defocus(&b);
         let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs, defocus);
+        let surface = self.corner_raster(&surface);
         let micropolygons = (nu - 1) * (nv - 1);
         let too_big = micropolygons > self.grid_size
-            || (micropolygons > MIN_OFF_SCREEN_SPLIT && self.mostly_outside(&raster));
+            || (micropolygons > MIN_OFF_SCREEN_SPLIT && self.mostly_outside(&surface));
         if too_big && item.depth + 1 < MAX_SPLIT_DEPTH {
-            for child in item.split(false) {
+            for child in item.split(None) {
                 self.refine(child, attrs, defer, out);
             }
             return;
@@ -324,8 +353,8 @@ impl Refiner<'_> {
         (iw + 1.0) * (ih + 1.0) < 0.5 * (w + 1.0) * (h + 1.0)
     }
 
-    /// Raster x0 x1 y0 y1 of the box's corners (those in front of the eye).
-    pub fn raster_bound(&self, b: &Bound) -> [f32; 4] {
+    /// Raster x0 x1 y0 y1 of the box's corners in front of the eye.
+    fn corner_raster(&self, b: &Bound) -> [f32; 4] {
         let mut raster = [
             f32::INFINITY,
             f32::NEG_INFINITY,
@@ -341,6 +370,13 @@ impl Refiner<'_> {
                 raster[3].max(q.y as f32),
             ];
         }
+        raster
+    }
+
+    /// Raster x0 x1 y0 y1 of the box's corners (those in front of the eye), grown by the
+    /// circle of confusion with depth of field.
+    pub fn raster_bound(&self, b: &Bound) -> [f32; 4] {
+        let mut raster = self.corner_raster(b);
         // Depth of field blurs every point by up to its circle of confusion.
         if let Some(lens) = &self.lens {
             let (gx, gy) = lens.blur_radius(
