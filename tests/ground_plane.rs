@@ -54,7 +54,13 @@ fn floors() -> [(&'static str, String); 3] {
         ),
         (
             "Patch",
-            format!("Patch \"bilinear\" \"P\" [{} {} {} {}]", p(a), p(b), p(c), p(d)),
+            format!(
+                "Patch \"bilinear\" \"P\" [{} {} {} {}]",
+                p(a),
+                p(b),
+                p(c),
+                p(d)
+            ),
         ),
         (
             "Polygon",
@@ -128,7 +134,11 @@ fn a_ground_plane_through_the_eye_plane_dices_about_its_visible_pixels() {
         for y in 0..H {
             for x in 0..W {
                 let want = cover[y * W + x];
-                let tol = if want == 0.0 || want == 1.0 { 1e-4 } else { 0.3 };
+                let tol = if want == 0.0 || want == 1.0 {
+                    1e-4
+                } else {
+                    0.3
+                };
                 let px = &r.rgba[(y * W + x) * 4..][..4];
                 let alpha = f64::from(px[3]);
                 assert!(

@@ -294,7 +294,10 @@ mod tests {
                     let s = q as f64 / 10.0;
                     let got: f64 = (0..4).map(|i| bez[i] * bernstein(i, s)).sum();
                     let want = spline(a + s * (b - a));
-                    assert!((got - want).abs() < 1e-9, "[{a},{b}] at {s}: {got} vs {want}");
+                    assert!(
+                        (got - want).abs() < 1e-9,
+                        "[{a},{b}] at {s}: {got} vs {want}"
+                    );
                 }
             }
         }
