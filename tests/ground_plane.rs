@@ -87,7 +87,7 @@ fn coverage(x: usize, y: usize) -> f64 {
             let sy = 1.0 - py / H as f64 * 2.0;
             let dir = DVec3::new(sx / d, sy / d, 1.0);
             let t = n.dot(a) / n.dot(dir);
-            if !(t > 0.01) {
+            if t.is_nan() || t <= 0.01 {
                 continue;
             }
             let q = dir * t - a;
