@@ -12,7 +12,7 @@ pub mod sl;
 pub mod texture;
 
 pub use images::{read_exr, read_png, read_tiff, read_zfile};
-pub use rib::{parse_rib, render_rib};
+pub use rib::{parse_rib, render_rib, render_rib_stats};
 pub use scratch::{remove_scratch_files, scratch_file, scratch_path};
 pub use sl::{sl_compile, sl_parse, sl_preprocess};
 pub use texture::{read_texture, txmake};

@@ -122,6 +122,12 @@ const DEFAULTS: &str = "Format 8 6 1\nPixelSamples 1 1\nShadingRate 4\n\
 /// requests build nothing, and archives read from disk are capped at 64 KiB and clamped the
 /// same way. Rendering runs on one thread (rayon's global pool, set on the first call).
 pub fn render_rib(data: &[u8]) {
+    let _ = render_rib_stats(data);
+}
+
+/// [`render_rib`], returning each rendered frame's statistics (the regression tests of slow
+/// inputs bound their micropolygon counts).
+pub fn render_rib_stats(data: &[u8]) -> Vec<illume_render::Stats> {
     static POOL: std::sync::Once = std::sync::Once::new();
     POOL.call_once(|| {
         let _ = rayon::ThreadPoolBuilder::new()
@@ -129,7 +135,7 @@ pub fn render_rib(data: &[u8]) {
             .build_global();
     });
     let Ok(reader) = illume_rib::decompress(std::io::Cursor::new(data.to_vec())) else {
-        return;
+        return Vec::new();
     };
     let mut ri = Ri::new();
     ri.set_parser(Box::new(
@@ -147,6 +153,7 @@ pub fn render_rib(data: &[u8]) {
         progress: None,
         textures: Some(&cache),
     };
+    let mut stats = Vec::new();
     illume_render::render_frames_in_order(
         &mut ri,
         requests,
@@ -154,7 +161,8 @@ pub fn render_rib(data: &[u8]) {
         |frame| {
             let max = MAX_RESOLUTION as u32;
             assert!(frame.options.xres <= max && frame.options.yres <= max);
-            let _ = illume_render::render(&frame, &settings);
+            stats.push(illume_render::render(&frame, &settings).stats);
         },
     );
+    stats
 }

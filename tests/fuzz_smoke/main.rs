@@ -13,6 +13,7 @@
 mod illume_fuzz;
 mod mutate;
 mod seeds;
+mod slow_render;
 
 use seeds::{Pictures, Seed};
 use std::path::{Path, PathBuf};

@@ -131,6 +131,50 @@ impl KnotVector {
         }
     }
 
+    /// The spans `(span, [a, b])` that the parameter range `[t0, t1]` crosses, each with the
+    /// part of the range inside it (one span when the range lies in one knot interval).
+    pub fn spans_of_range(&self, t0: f64, t1: f64) -> Vec<(usize, [f64; 2])> {
+        let first = self.span(t0);
+        (first..self.n)
+            .take_while(|&i| i == first || self.knots[i] < t1)
+            .filter(|&i| self.knots[i] < self.knots[i + 1])
+            .map(|i| (i, [t0.max(self.knots[i]), t1.min(self.knots[i + 1])]))
+            .filter(|(_, [a, b])| a <= b)
+            .collect()
+    }
+
+    /// The Bézier form of the spline over `[a, b]` inside the non-empty `span`: row `i` holds
+    /// the weights of control points `span−p … span` that make the `i`-th Bézier control
+    /// point, the blossom `f(a,…,a, b,…,b)` with `i` copies of `b` (de Boor's recurrence with
+    /// a different argument per level). Why: the hull of these `p + 1` points bounds the curve
+    /// over `[a, b]` only, where the hull of the B-spline control points bounds the whole span
+    /// (a bilinear patch split a thousand times would keep the whole patch as its bound).
+    pub fn bezier_of_range(&self, span: usize, [a, b]: [f64; 2]) -> Vec<Vec<f64>> {
+        let p = self.order - 1;
+        let u = &self.knots;
+        (0..=p)
+            .map(|i| {
+                // Coefficient vectors of d_k, k = 0..=p, over the span's control points.
+                let mut d: Vec<Vec<f64>> = (0..=p)
+                    .map(|k| (0..=p).map(|m| f64::from(u8::from(m == k))).collect())
+                    .collect();
+                for r in 1..=p {
+                    let x = if r <= p - i { a } else { b };
+                    for k in (r..=p).rev() {
+                        let j = span + k - p;
+                        let den = u[j + p + 1 - r] - u[j];
+                        let alpha = if den > 0.0 { (x - u[j]) / den } else { 0.0 };
+                        let (lo, hi) = d.split_at_mut(k);
+                        for (h, l) in hi[0].iter_mut().zip(&lo[k - 1]) {
+                            *h = (1.0 - alpha) * l + alpha * *h;
+                        }
+                    }
+                }
+                d.swap_remove(p)
+            })
+            .collect()
+    }
+
     /// Algorithm A2.2: the `q + 1` degree-`q` functions non-zero on `span`.
     fn basis_of_degree(&self, span: usize, t: f64, q: usize, out: &mut [f64]) {
         let u = &self.knots;
@@ -215,5 +259,47 @@ mod tests {
         assert!(KnotVector::new(&[0.0; 4], 2, 2).is_err());
         assert!(KnotVector::new(&[0.0, 1.0], 0, 2).is_err());
         assert!(KnotVector::new(&[0.0, f32::NAN, 1.0, 1.0], 2, 2).is_err());
+    }
+
+    /// The Bézier form of a sub-range must trace the same curve: evaluate it with Bernstein
+    /// polynomials and compare with the recursive Cox–de Boor sum over the original control
+    /// values, for ranges inside one span and ranges crossing knots.
+    #[test]
+    fn bezier_of_range_traces_the_spline_over_the_range() {
+        let knots = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0];
+        let kv = KnotVector::new(&knots, 4, 8).unwrap();
+        let u: Vec<f64> = knots.iter().map(|&k| f64::from(k)).collect();
+        let ctrl = [0.3, -1.2, 2.5, 0.7, -0.4, 1.9, 3.3, -2.0];
+        let spline = |t: f64| -> f64 {
+            // The closed end of the domain: evaluate just inside it.
+            let t = t.min(3.0 - 1e-12);
+            (0..8).map(|j| ctrl[j] * cox_de_boor(&u, j, 3, t)).sum()
+        };
+        let bernstein = |i: usize, s: f64| -> f64 {
+            let binom = [1.0, 3.0, 3.0, 1.0][i];
+            binom * s.powi(i as i32) * (1.0 - s).powi(3 - i as i32)
+        };
+        for (t0, t1) in [(0.1, 0.3), (0.55, 0.9), (1.2, 1.21), (0.2, 2.7), (0.0, 3.0)] {
+            let spans = kv.spans_of_range(t0, t1);
+            assert!(!spans.is_empty());
+            assert_eq!(spans.first().unwrap().1[0], t0);
+            assert_eq!(spans.last().unwrap().1[1], t1);
+            for (span, [a, b]) in spans {
+                let m = kv.bezier_of_range(span, [a, b]);
+                let bez: Vec<f64> = m
+                    .iter()
+                    .map(|w| (0..4).map(|k| w[k] * ctrl[span - 3 + k]).sum())
+                    .collect();
+                for q in 0..=10 {
+                    let s = q as f64 / 10.0;
+                    let got: f64 = (0..4).map(|i| bez[i] * bernstein(i, s)).sum();
+                    let want = spline(a + s * (b - a));
+                    assert!(
+                        (got - want).abs() < 1e-9,
+                        "[{a},{b}] at {s}: {got} vs {want}"
+                    );
+                }
+            }
+        }
     }
 }

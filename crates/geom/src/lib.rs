@@ -84,6 +84,14 @@ pub trait Primitive: Send + Sync + std::fmt::Debug {
         0
     }
 
+    /// Which way to cut a piece that crosses the eye plane ([`Primitive::split_choice`]'s
+    /// tags): across its depth where the primitive can tell, so the parts in front of the eye
+    /// separate from those behind it within the few eye splits allowed (a ground plane cut
+    /// along its width instead ran out of eye splits and lost visible pieces).
+    fn eye_split_choice(&self) -> u8 {
+        self.split_choice()
+    }
+
     /// [`Primitive::split`], cut the way `choice` (a [`Primitive::split_choice`] of a key of the
     /// same topology) says. Primitives whose split depends on topology only keep the default.
     fn split_as(&self, choice: u8) -> Vec<Box<dyn Primitive>> {

@@ -89,18 +89,9 @@ impl Axis {
         span
     }
 
-    /// Control-point indices whose basis functions are non-zero somewhere on local `[s0, s1]`.
-    fn support(&self, [s0, s1]: [f64; 2]) -> std::ops::RangeInclusive<usize> {
-        let (t0, t1) = (self.param(s0), self.param(s1));
-        let k = &self.knots;
-        let p = k.order() - 1;
-        let first = k.span(t0);
-        // The span reaching t1 from the left: the last non-empty span starting below t1.
-        let last = (first..k.len())
-            .take_while(|&i| i == first || k.knot(i) < t1)
-            .last()
-            .unwrap_or(first);
-        first - p..=last
+    /// Knot parameters of a local range.
+    fn params(&self, [s0, s1]: [f64; 2]) -> [f64; 2] {
+        [self.param(s0), self.param(s1)]
     }
 }
 
@@ -177,16 +168,42 @@ impl Surface for NurbsSurface {
         [p, clean(pu), clean(pv)]
     }
 
-    /// Convex hull property: with positive weights the sub-range lies in the hull of the
-    /// control points whose basis functions reach it.
+    /// Convex hull property: with positive weights the sub-range lies in the hull of its
+    /// Bézier control points (homogeneous, one set per knot rectangle it crosses), which
+    /// shrink with the range: the B-spline control points alone bound a whole knot span,
+    /// so the pieces of a split bilinear floor would all keep the floor's bound and never be
+    /// culled off screen (issue 21).
     fn bound(&self, u: [f64; 2], v: [f64; 2]) -> Bound {
-        let (ru, rv) = (self.u.support(u), self.v.support(v));
-        Bound::from_dpoints(rv.flat_map(|j| {
-            ru.clone().map(move |i| {
-                let c = self.ctrl(i, j);
-                c.truncate() / c.w
-            })
-        }))
+        let (pu, pv) = (self.u.knots.order() - 1, self.v.knots.order() - 1);
+        let (tu, tv) = (self.u.params(u), self.v.params(v));
+        let mut points = Vec::new();
+        for (su, ru) in self.u.knots.spans_of_range(tu[0], tu[1]) {
+            let mu = self.u.knots.bezier_of_range(su, ru);
+            for (sv, rv) in self.v.knots.spans_of_range(tv[0], tv[1]) {
+                let mv = self.v.knots.bezier_of_range(sv, rv);
+                // Rows of the span's control points converted to Bézier form in u …
+                let rows: Vec<Vec<DVec4>> = (0..=pv)
+                    .map(|b| {
+                        mu.iter()
+                            .map(|w| {
+                                w.iter()
+                                    .enumerate()
+                                    .map(|(k, &x)| x * self.ctrl(su + k - pu, sv + b - pv))
+                                    .sum()
+                            })
+                            .collect()
+                    })
+                    .collect();
+                // … then in v.
+                for w in &mv {
+                    for i in 0..=pu {
+                        let c: DVec4 = w.iter().zip(&rows).map(|(&x, r)| x * r[i]).sum();
+                        points.push(c.truncate() / c.w);
+                    }
+                }
+            }
+        }
+        Bound::from_dpoints(points)
     }
 
     fn trimmed(&self, u: f64, v: f64) -> bool {

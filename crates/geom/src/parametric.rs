@@ -306,6 +306,26 @@ impl Primitive for Parametric {
         }
     }
 
+    /// Halves the direction along which camera depth changes most (when both can be halved).
+    fn eye_split_choice(&self) -> u8 {
+        let ([u0, u1], [v0, v1]) = (self.u, self.v);
+        let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        let dz = |a: DVec3, b: DVec3| (a.z - b.z).abs();
+        let zu = [v0, vm, v1]
+            .iter()
+            .map(|&v| dz(self.p(u0, v), self.p(u1, v)))
+            .fold(0.0, f64::max);
+        let zv = [u0, um, u1]
+            .iter()
+            .map(|&u| dz(self.p(u, v0), self.p(u, v1)))
+            .fold(0.0, f64::max);
+        match (halve(self.u), halve(self.v)) {
+            (Some(_), Some(_)) if zv > zu => 1,
+            (Some(_), Some(_)) if zu > zv => 0,
+            _ => self.split_choice(),
+        }
+    }
+
     fn split_as(&self, choice: u8) -> Vec<Box<dyn Primitive>> {
         match (choice, halve(self.u), halve(self.v)) {
             (0, Some((a, b)), _) => vec![

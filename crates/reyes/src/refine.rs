@@ -26,6 +26,9 @@ pub(crate) fn motion_factor(blur: f64) -> f64 {
 
 /// Splitting deeper than this drops the piece (a degenerate primitive must not hang).
 const MAX_SPLIT_DEPTH: u32 = 48;
+/// A piece mostly outside the region is split rather than diced once its grid would have
+/// more micropolygons than this, so the outside part is culled instead of diced.
+const MIN_OFF_SCREEN_SPLIT: usize = 16;
 /// Vertices per side of the coarse test dice used to measure raster size.
 const TEST_DICE: usize = 5;
 
@@ -96,8 +99,9 @@ impl<'a> Item<'a> {
         }
     }
 
-    /// The children of one split, each one level deeper.
-    fn split(self, eye_split: bool) -> impl Iterator<Item = Item<'a>> {
+    /// The children of one split, each one level deeper; an eye split gives the
+    /// `displacementbound` padding and the eye plane's depth ([`eye_split_choice`]).
+    fn split(self, eye_split: Option<(f32, f64)>) -> impl Iterator<Item = Item<'a>> {
         let Item {
             prim,
             later,
@@ -106,8 +110,8 @@ impl<'a> Item<'a> {
             depth,
             path,
         } = self;
-        let eye_splits = eye_splits + u32::from(eye_split);
-        split_keys(&prim, &later)
+        let eye_splits = eye_splits + u32::from(eye_split.is_some());
+        split_keys(&prim, &later, eye_split)
             .into_iter()
             .enumerate()
             .map(move |(i, (prim, later))| {
@@ -144,13 +148,19 @@ pub(crate) struct Refiner<'c> {
     pub lens: Option<crate::lens::Lens>,
 }
 
-/// Splits a piece and its motion keys alike (the first key chooses the cut); keys that split
-/// into a different number of children are dropped (the piece stops moving).
+/// Splits a piece and its motion keys alike (the first key chooses the cut, across its depth
+/// for an eye split); keys that split into a different number of children are dropped (the
+/// piece stops moving).
 fn split_keys<'a>(
     prim: &PrimRef<'a>,
     later: &[PrimRef<'a>],
+    eye_split: Option<(f32, f64)>,
 ) -> Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)> {
     let choice = prim.get().split_choice();
+    let choice = match eye_split {
+        Some(pad) => eye_split_choice(prim.get(), choice, pad),
+        None => choice,
+    };
     let children = prim.get().split_as(choice);
     let mut keys: Vec<Vec<Box<dyn Primitive>>> =
         later.iter().map(|k| k.get().split_as(choice)).collect();
@@ -168,6 +178,30 @@ fn split_keys<'a>(
             (PrimRef::Owned(c), ks)
         })
         .collect()
+}
+
+/// How to cut a piece whose bound (padded by `pad.0`) crosses the eye plane `z = pad.1`: the
+/// primitive's usual cut (its longer side) or its cut across depth, whichever leaves fewer
+/// children crossing (ties: the usual one). A ground plane, wider than deep, cut along its
+/// width never separates what is in front of the eye from what is behind and runs out of eye
+/// splits, losing visible pieces; a sphere padded across the eye plane by a large
+/// `displacementbound` shrinks its padded bounds fastest along its longer side.
+fn eye_split_choice(prim: &dyn Primitive, usual: u8, (pad, eye_z): (f32, f64)) -> u8 {
+    let across = prim.eye_split_choice();
+    if across == usual {
+        return usual;
+    }
+    let crossing = |choice: u8| {
+        prim.split_as(choice)
+            .iter()
+            .filter(|c| f64::from(c.bound().padded(pad).min.z) < eye_z)
+            .count()
+    };
+    if crossing(across) < crossing(usual) {
+        across
+    } else {
+        usual
+    }
 }
 
 #[derive(Default)]
@@ -238,6 +272,9 @@ impl Refiner<'_> {
         for k in &item.later {
             b = b.union(k.get().bound());
         }
+        // The surface itself, before displacement padding and lens blur, for the dice
+        // decision: a piece padded by a large `displacementbound` is not mostly off screen.
+        let surface = b;
         let b = b.padded(attrs.displacement_bound);
         if b.is_empty() || self.outside_frustum(&b) {
             counts.culled += 1;
@@ -253,7 +290,7 @@ impl Refiner<'_> {
                 counts.eye_dropped += 1;
                 return;
             }
-            for child in item.split(true) {
+            for child in item.split(Some((attrs.displacement_bound, self.eye_z()))) {
                 self.refine(child, attrs, defer, out);
             }
             return;
@@ -264,7 +301,7 @@ impl Refiner<'_> {
             return;
         }
         if !item.prim.get().diceable() {
-            for child in item.split(false) {
+            for child in item.split(None) {
                 self.refine(child, attrs, defer, out);
             }
             return;
@@ -277,9 +314,14 @@ impl Refiner<'_> {
             counts.culled += 1;
             return;
         }
-        let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs);
-        if (nu - 1) * (nv - 1) > self.grid_size && item.depth + 1 < MAX_SPLIT_DEPTH {
-            for child in item.split(false) {
+        let defocus = self.defocus(&b);
+        let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs, defocus);
+        let surface = self.corner_raster(&surface);
+        let micropolygons = (nu - 1) * (nv - 1);
+        let too_big = micropolygons > self.grid_size
+            || (micropolygons > MIN_OFF_SCREEN_SPLIT && self.mostly_outside(&surface));
+        if too_big && item.depth + 1 < MAX_SPLIT_DEPTH {
+            for child in item.split(None) {
                 self.refine(child, attrs, defer, out);
             }
             return;
@@ -297,8 +339,22 @@ impl Refiner<'_> {
         });
     }
 
-    /// Raster x0 x1 y0 y1 of the box's corners (those in front of the eye).
-    pub fn raster_bound(&self, b: &Bound) -> [f32; 4] {
+    /// Whether less than half of a raster bound (grown by a pixel, so slivers count) lies
+    /// in the region. Why: a piece's dice rate comes from its whole projected size, so a
+    /// ground plane's far strip, a few pixels tall but reaching far past both sides of the
+    /// frame, would dice mostly off screen (8× the micropolygons of the pixels it covers in
+    /// `tests/ground_plane.rs`); split, its outside halves are culled.
+    fn mostly_outside(&self, raster: &[f32; 4]) -> bool {
+        let r = &self.region;
+        let inside = |lo: f32, hi: f32, rlo: f32, rhi: f32| (hi.min(rhi) - lo.max(rlo)).max(0.0);
+        let iw = inside(raster[0], raster[1], r[0], r[1]);
+        let ih = inside(raster[2], raster[3], r[2], r[3]);
+        let (w, h) = (raster[1] - raster[0], raster[3] - raster[2]);
+        (iw + 1.0) * (ih + 1.0) < 0.5 * (w + 1.0) * (h + 1.0)
+    }
+
+    /// Raster x0 x1 y0 y1 of the box's corners in front of the eye.
+    fn corner_raster(&self, b: &Bound) -> [f32; 4] {
         let mut raster = [
             f32::INFINITY,
             f32::NEG_INFINITY,
@@ -314,6 +370,13 @@ impl Refiner<'_> {
                 raster[3].max(q.y as f32),
             ];
         }
+        raster
+    }
+
+    /// Raster x0 x1 y0 y1 of the box's corners (those in front of the eye), grown by the
+    /// circle of confusion with depth of field.
+    pub fn raster_bound(&self, b: &Bound) -> [f32; 4] {
+        let mut raster = self.corner_raster(b);
         // Depth of field blurs every point by up to its circle of confusion.
         if let Some(lens) = &self.lens {
             let (gx, gy) = lens.blur_radius(
@@ -330,14 +393,37 @@ impl Refiner<'_> {
         raster
     }
 
+    /// The smallest circle-of-confusion diameter (raster pixels, the larger axis) of any point
+    /// in the box: 0 without a lens or when the focal plane passes through it. A piece this
+    /// blurred shows no detail finer than that, and dicing it at the shading rate is what
+    /// made a defocused piece near the lens cost minutes (each micropolygon is tested against
+    /// every sample its circle of confusion reaches: fuzz finding `render_rib_slow_1`).
+    fn defocus(&self, b: &Bound) -> f64 {
+        let Some(lens) = &self.lens else { return 0.0 };
+        let (z0, z1) = (
+            f64::from(b.min.z).max(self.eye_z()),
+            f64::from(b.max.z).max(self.eye_z()),
+        );
+        if (z0..=z1).contains(&lens.focal_distance) {
+            return 0.0;
+        }
+        let radius = |z: f64| {
+            let (x, y) = lens.blur_radius(z, z);
+            x.max(y)
+        };
+        2.0 * radius(z0).min(radius(z1))
+    }
+
     /// Micropolygons per side so each is about `ShadingRate` pixels in area: the longest
-    /// raster-space row/column of a coarse test dice, divided by √ShadingRate; for a moving
-    /// piece also by its motion blur ([`motion_factor`]).
+    /// raster-space row/column of a coarse test dice, divided by √ShadingRate; for a moving or
+    /// defocused piece also by its blur ([`motion_factor`] of the larger of the motion and
+    /// the smallest circle of confusion, `defocus`).
     fn dice_rates(
         &self,
         prim: &dyn Primitive,
         later: &[PrimRef],
         attrs: &Attributes,
+        defocus: f64,
     ) -> (usize, usize) {
         let g = prim.dice(TEST_DICE, TEST_DICE);
         let pts: Vec<Option<DVec3>> = g.p.iter().map(|&p| self.project(p)).collect();
@@ -369,7 +455,7 @@ impl Refiner<'_> {
                     .sum(),
             );
         }
-        let step = f64::from(attrs.shading_rate).sqrt() * motion_factor(blur);
+        let step = f64::from(attrs.shading_rate).sqrt() * motion_factor(blur.max(defocus));
         let rate = |l: f64| -> usize {
             let n = (l / step).ceil().clamp(1.0, 4096.0) as usize;
             if attrs.dice_binary {

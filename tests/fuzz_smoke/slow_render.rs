@@ -1,0 +1,39 @@
+//! Slow `render_rib` inputs found by fuzzing (issue 21): mutated depth-of-field scenes whose
+//! pieces near the lens, blurred over much of the frame, were diced at the shading rate, so
+//! each of thousands of micropolygons was tested against every sample its circle of confusion
+//! reached (27 to over 60 s of CPU each for a ≤ 24×24 frame). A defocused piece now dices
+//! coarser by its smallest circle of confusion (`refine::Refiner::defocus`). Each renders
+//! through the target's own body (24×24 at most, 2×2 samples, ShadingRate ≥ 1) with a bound
+//! on the micropolygons diced instead of a time limit (tests do not time).
+use crate::illume_fuzz;
+
+fn micropolygons(name: &str) -> u64 {
+    let path = crate::seeds::repo().join("fuzz/regressions").join(name);
+    let data = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let t = std::time::Instant::now();
+    let stats = illume_fuzz::render_rib_stats(&data);
+    let mp = stats.iter().map(|s| s.micropolygons).sum();
+    eprintln!(
+        "{name}: {} frames, {mp} micropolygons, grids {}, pieces {}, {:.2} s",
+        stats.len(),
+        stats.iter().map(|s| s.grids).sum::<u64>(),
+        stats.iter().map(|s| s.pieces).sum::<u64>(),
+        t.elapsed().as_secs_f64()
+    );
+    mp
+}
+
+#[test]
+fn slow_render_inputs_dice_a_bounded_number_of_micropolygons() {
+    for name in [
+        "render_rib_slow_defocus_1.rib",
+        "render_rib_slow_defocus_2.rib",
+        "render_rib_slow_defocus_3.rib",
+    ] {
+        let mp = micropolygons(name);
+        // 1,600 to 7,300 after the fix. A 24×24 frame at ShadingRate ≥ 1 needs ~600 per
+        // layer of surfaces it sees; 50,000 leaves room for ~80 layers and overlap, and is
+        // far below what made these slow (a piece near the lens diced at the shading rate).
+        assert!(mp > 0 && mp < 50_000, "{name}: {mp} micropolygons");
+    }
+}
