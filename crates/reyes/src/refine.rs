@@ -330,9 +330,21 @@ impl Refiner<'_> {
         raster
     }
 
+    /// The smallest circle of confusion (raster pixels across) over the depths of `pts`: zero
+    /// without a lens or when they straddle the focal plane.
+    fn coc(&self, pts: &[Vec3]) -> f64 {
+        let Some(lens) = &self.lens else { return 0.0 };
+        let z = pts.iter().map(|p| f64::from(p.z));
+        let (z0, z1) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| {
+            (a.min(z), b.max(z))
+        });
+        lens.min_blur_diameter(z0.max(self.eye_z()), z1)
+    }
+
     /// Micropolygons per side so each is about `ShadingRate` pixels in area: the longest
     /// raster-space row/column of a coarse test dice, divided by √ShadingRate; for a moving
-    /// piece also by its motion blur ([`motion_factor`]).
+    /// piece also by its motion blur ([`motion_factor`]), for one out of focus by its circle of
+    /// confusion (`lens::focus_factor`), whichever is larger.
     fn dice_rates(
         &self,
         prim: &dyn Primitive,
@@ -369,7 +381,8 @@ impl Refiner<'_> {
                     .sum(),
             );
         }
-        let step = f64::from(attrs.shading_rate).sqrt() * motion_factor(blur);
+        let step = f64::from(attrs.shading_rate).sqrt()
+            * motion_factor(blur).max(crate::lens::focus_factor(self.coc(&g.p)));
         let rate = |l: f64| -> usize {
             let n = (l / step).ceil().clamp(1.0, 4096.0) as usize;
             if attrs.dice_binary {
