@@ -20,9 +20,9 @@ pub(crate) struct Lens {
     pub focal_distance: f64,
     /// Raster pixels per screen unit times the perspective scale, for x and y (y flips).
     scale: [f64; 2],
-    /// Per time stratum `f` of a pixel's samples (their time-ordered position), a box
-    /// `[x0, x1, y0, y1]` on the unit disk holding the lens positions of those samples in
-    /// every pixel (`sampling::lens_strata`); empty until [`Lens::with_strata`].
+    /// Per lens index `j` of a pixel's samples, a box `[x0, x1, y0, y1]` on the unit disk
+    /// holding the lens positions of those samples in every pixel (`sampling::lens_strata`);
+    /// empty until [`Lens::with_strata`].
     strata: Arc<[[f64; 4]]>,
 }
 
@@ -45,7 +45,7 @@ impl Lens {
         })
     }
 
-    /// The lens with the disk box of each time stratum's lens cell, for `samples` per pixel
+    /// The lens with the disk box of each lens index's cell, for `samples` per pixel
     /// in frame `frame` (the pairing [`lens_strata`] makes).
     pub fn with_strata(mut self, samples: [u32; 2], frame: i32) -> Lens {
         let samples = samples.map(|s| s.max(1));

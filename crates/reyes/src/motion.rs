@@ -307,7 +307,18 @@ fn sample_moving_micropolygon(
             gx.max(gy) >= LENS_CELL_BLUR
         }),
         pad: 0.0,
+        fixed: None,
     };
+    if m.keys.len() == 1 {
+        let mut v = [DVec3::ZERO; 4];
+        for (q, &k) in v.iter_mut().zip(&quad) {
+            let Some(p) = project(m.keys[0][k].as_dvec3()) else {
+                return 0;
+            };
+            *q = p;
+        }
+        mp.fixed = Some(v);
+    }
     // Most micropolygons of a grid that several buckets share miss this one.
     if mp.pixels(key_box, out).is_none() {
         return 0;
@@ -348,6 +359,11 @@ fn sample_moving_micropolygon(
             return 0;
         }
     }
+    if let Some(lens) = lens.filter(|_| mp.lens_cells && lens_cells_pay(&mp, bounds, n)) {
+        return mp
+            .sample_lens_cells(lens, bounds, project, out)
+            .unwrap_or(0);
+    }
     let mut hits = 0;
     for (k, &b) in bounds.iter().enumerate() {
         match mp.sample_stratum(b, stratum_samples(k, strata, n), project, out) {
@@ -362,6 +378,47 @@ fn sample_moving_micropolygon(
 /// it, the cells' boxes would all be about the micropolygon's own, and one box per time
 /// stratum costs less.
 const LENS_CELL_BLUR: f64 = 0.5;
+
+/// The box of a micropolygon's paths over every stratum.
+fn union_path(bounds: &[StratumBound]) -> [f64; 4] {
+    bounds.iter().fold(
+        [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |a, b| {
+            let p = b.path;
+            [
+                a[0].min(p[0]),
+                a[1].max(p[1]),
+                a[2].min(p[2]),
+                a[3].max(p[3]),
+            ]
+        },
+    )
+}
+
+/// Whether bounding a lens-blurred micropolygon per lens cell (its whole path, a cell's share
+/// of the blur) visits fewer samples than per time stratum (a stratum's path, the whole
+/// blur): the first wins unless it moves much farther than it blurs.
+fn lens_cells_pay(mp: &MovingMicropolygon, bounds: &[StratumBound], n: usize) -> bool {
+    let Some(lens) = mp.lens else { return false };
+    let [z0, z1] = mp.z;
+    let (gx, gy) = lens.blur_radius(z0, z1);
+    let cell = 2.0 / (n as f64).sqrt();
+    let area = |b: [f64; 4], gx: f64, gy: f64| {
+        (b[1] - b[0] + 2.0 * gx + 1.0) * (b[3] - b[2] + 2.0 * gy + 1.0)
+    };
+    let by_cell = n as f64 * area(union_path(bounds), gx * cell, gy * cell);
+    let per_stratum = n as f64 / bounds.len() as f64;
+    let by_time: f64 = bounds
+        .iter()
+        .map(|b| area(b.path, gx, gy) * per_stratum)
+        .sum();
+    by_cell < by_time
+}
 
 /// The buffer's pixels `[x0, x1, y0, y1]` (inclusive, relative to its origin) that the
 /// raster box `b` reaches; `None` when it reaches none.
@@ -400,6 +457,9 @@ struct MovingMicropolygon<'a> {
     lens_cells: bool,
     /// Extra growth of a stratum's box for the rounding of sample times (pixels).
     pad: f64,
+    /// Its raster corners when it does not move (one key: only a lens blurs it), projected
+    /// once instead of per sample.
+    fixed: Option<[DVec3; 4]>,
 }
 
 impl MovingMicropolygon<'_> {
@@ -428,9 +488,6 @@ impl MovingMicropolygon<'_> {
     ) -> Option<u64> {
         if run.is_empty() {
             return Some(0);
-        }
-        if let Some(lens) = self.lens.filter(|_| self.lens_cells) {
-            return self.sample_lens_cells(lens, sb, run, project, out);
         }
         let Some([qx0, qx1, qy0, qy1]) = self.pixels(sb.path, out) else {
             return Some(0);
@@ -470,50 +527,47 @@ impl MovingMicropolygon<'_> {
         Some(hits)
     }
 
-    /// [`Self::sample_stratum`] through a lens that blurs: one time-ordered position `f` of
-    /// `run` at a time, which in every pixel is one sample whose time lies in the `f`th slice
-    /// of the shutter and whose lens position lies in one lens cell (`sampling::lens_strata`).
-    /// Such a sample sees the micropolygon only inside the stratum's `still` box moved along
-    /// `v` over the slice's times and shifted by the cell's lens offsets over the
-    /// micropolygon's depths; only the pixels of that box are visited. A cell is `1/n` of the
-    /// lens, so the box is the micropolygon's own size plus about `2·CoC/√n` instead of
-    /// `2·CoC`: the samples tested per micropolygon drop from about `n·(size + 2·CoC)²` to
-    /// `n·(size + 2·CoC/√n)²`.
+    /// Every sample through a lens that blurs, one lens index `j` at a time: in every pixel
+    /// one sample, whose lens position lies in one lens cell (`sampling::lens_strata`) and
+    /// whose time is anywhere in the shutter. Such a sample sees the micropolygon only inside
+    /// its box over the shutter (`path`, the union of the strata's) shifted by the cell's lens
+    /// offsets over the micropolygon's depths; only the pixels of that box are visited, and a
+    /// sample is then checked against its own time stratum's bound. A cell is `1/n` of the
+    /// lens, so the box is the micropolygon's own size (plus its motion) and about
+    /// `2·CoC/√n` instead of `2·CoC`: about `n·(size + 2·CoC/√n)²` samples tested instead of
+    /// `n·(size + 2·CoC)²`.
     fn sample_lens_cells(
         &self,
         lens: &Lens,
-        sb: StratumBound,
-        run: std::ops::Range<usize>,
+        bounds: &[StratumBound],
         project: &impl Fn(DVec3) -> Option<DVec3>,
         out: &mut SampleBuffer,
     ) -> Option<u64> {
         let n = out.n_per;
-        let shutter = out.shutter.map(f64::from);
-        let (dur, slack) = (shutter[1] - shutter[0], time_slack(shutter));
+        let strata = bounds.len();
         let [z0, z1] = self.z;
         let sw = out.size[0];
         let pad = self.reach.iter().copied().fold(0.0, f64::max) + 3.0 * self.pad + 1e-6;
-        let b = sb.still;
+        let path = union_path(bounds);
         let mut hits = 0;
-        for f in run {
-            // The slice's times relative to the stratum start, and the move back along `v`.
-            let ta = shutter[0] + dur * f as f64 / n as f64 - slack - sb.t0;
-            let tb = shutter[0] + dur * (f + 1) as f64 / n as f64 + slack - sb.t0;
-            let mv = |v: f64| ((v * ta).min(v * tb), (v * ta).max(v * tb));
-            let ((mx0, mx1), (my0, my1)) = (mv(sb.v[0]), mv(sb.v[1]));
-            let o = lens.offset_box(z0, z1, lens.stratum_bound(f));
+        for j in 0..n {
+            let o = lens.offset_box(z0, z1, lens.stratum_bound(j));
             let bx = [
-                b[0] + mx0 + o[0] - pad,
-                b[1] + mx1 + o[1] + pad,
-                b[2] + my0 + o[2] - pad,
-                b[3] + my1 + o[3] + pad,
+                path[0] + o[0] - pad,
+                path[1] + o[1] + pad,
+                path[2] + o[2] - pad,
+                path[3] + o[3] + pad,
             ];
             let Some([qx0, qx1, qy0, qy1]) = buffer_pixels(bx, out) else {
                 continue;
             };
             for qy in qy0..=qy1 {
                 for qx in qx0..=qx1 {
-                    let ts = out.timed[(qy as usize * sw + qx as usize) * n + f];
+                    let base = (qy as usize * sw + qx as usize) * n;
+                    let f = out.timed[base + j].by_lens as usize;
+                    let ts = out.timed[base + f.min(n - 1)];
+                    let sb = &bounds[(f * strata / n).min(strata - 1)];
+                    let b = sb.still;
                     let dt = f64::from(ts.t) - sb.t0;
                     let x = f64::from(ts.x) - sb.v[0] * dt;
                     let y = f64::from(ts.y) - sb.v[1] * dt;
@@ -525,7 +579,7 @@ impl MovingMicropolygon<'_> {
                     {
                         continue;
                     }
-                    hits += self.sample_at(&ts, &sb, project, out)?;
+                    hits += self.sample_at(&ts, sb, project, out)?;
                 }
             }
         }
@@ -542,9 +596,10 @@ impl MovingMicropolygon<'_> {
         out: &mut SampleBuffer,
     ) -> Option<u64> {
         let (x, y) = (f64::from(ts.x), f64::from(ts.y));
-        let mut v = match &sb.chord {
-            Some(c) => c.corners(f64::from(ts.t), sb.t0)?,
-            None => {
+        let mut v = match (&sb.chord, self.fixed) {
+            (_, Some(v)) => v,
+            (Some(c), None) => c.corners(f64::from(ts.t), sb.t0)?,
+            (None, None) => {
                 let seg = segment(&self.m.times, f64::from(ts.t));
                 let mut v = [DVec3::ZERO; 4];
                 for (vk, &k) in v.iter_mut().zip(&self.quad) {

@@ -22,12 +22,16 @@ pub(crate) struct TimedSample {
     pub lens: (f32, f32),
     /// Index of the sample in the buffer (pixel-major, `sample_position` order).
     pub s: u32,
+    /// Not about this sample: the time-ordered position in this pixel of the sample whose
+    /// lens index (`sampling::lens_strata`) equals this one's position, so a lens cell finds
+    /// its sample in every pixel without a search.
+    pub by_lens: u32,
 }
 
 /// Appends one pixel's samples in time order: the sample of time stratum `f` at position `f`
 /// (its times are non-decreasing in `f`, since they are `open + (close − open)·(f + j)/n`
-/// rounded monotonically), so position `f` also names the sample's lens cell
-/// (`sampling::lens_strata`). `first` is the buffer index of the pixel's first sample.
+/// rounded monotonically), with the lens index table `by_lens` filled in. `first` is the
+/// buffer index of the pixel's first sample.
 pub(crate) fn push_time_ordered(
     pos: &[(f32, f32)],
     time_lens: &[TimeLens],
@@ -41,6 +45,7 @@ pub(crate) fn push_time_ordered(
         t: 0.0,
         lens: (0.0, 0.0),
         s: 0,
+        by_lens: 0,
     };
     out.resize(start + time_lens.len(), blank);
     for (i, (tl, p)) in time_lens.iter().zip(pos).enumerate() {
@@ -50,7 +55,11 @@ pub(crate) fn push_time_ordered(
             t: tl.t,
             lens: tl.lens,
             s: (first + i) as u32,
+            by_lens: 0,
         };
+    }
+    for tl in time_lens {
+        out[start + tl.lens_index as usize].by_lens = tl.stratum;
     }
 }
 
