@@ -11,6 +11,12 @@
 //! micropolygon moved to the sample's own time and lens position, with the same edge rules as
 //! a still micropolygon. So a fast micropolygon costs about one test per pixel it sweeps plus
 //! what it would cost still, instead of every sample of its whole path.
+//!
+//! A micropolygon the lens blurs by half a pixel or more is bounded per lens cell instead
+//! (`sample_lens_cells`): every pixel has one sample per cell of the lens grid
+//! (`sampling::lens_strata`), so per cell only the pixels its path reaches through that cell
+//! (a `1/√n` share of the circle of confusion per axis) are visited; whichever of the two
+//! visits fewer pixels is used (`lens_cells_pay`).
 use crate::dice::ShadedGrid;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
