@@ -126,14 +126,6 @@ fn moving_out_of_focus_edge_has_the_lens_profile_swept_over_the_shutter() {
     let shift = dx / Z * pixels_per_unit();
     let r = render_one(&edge_scene(DOF, Z, dx));
     let err = profile_error(&r, c, shift);
-    let got = column_profile(&r);
-    for x in 50..130 {
-        eprintln!(
-            "DBG {x} {:.4} {:.4}",
-            got[x],
-            column_reference(x, 80.0, c, shift)
-        );
-    }
     eprintln!("moving edge: coc {c:.3} px, shift {shift:.3} px, max column error {err:.4}");
     assert!(err < TOLERANCE, "max column error {err}");
     assert!(profile_error(&r, c, 0.0) > TOLERANCE);

@@ -90,7 +90,7 @@ impl Lens {
     /// points with depths in `[z0, z1]`: zero when the range holds the focal plane.
     pub fn min_blur_diameter(&self, z0: f64, z1: f64) -> f64 {
         let zf = self.focal_distance;
-        if !(z0 > 0.0) || (z0 <= zf && zf <= z1) {
+        if z0.is_nan() || z0 <= 0.0 || (z0 <= zf && zf <= z1) {
             return 0.0;
         }
         let k = [z0, z1]

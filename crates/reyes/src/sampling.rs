@@ -219,7 +219,7 @@ mod tests {
         for (px, py) in [(0, 0), (5, -2), (-40, 17), (300, 9), (1, 1), (2, 1)] {
             let mut out = Vec::new();
             sample_time_lens(px, py, spp, 7, true, [0.0, 1.0], &mut out);
-            let mut seen = vec![false; 12];
+            let mut seen = [false; 12];
             for tl in &out {
                 let l = cells[tl.lens_index as usize];
                 seen[l as usize] = true;
