@@ -103,8 +103,20 @@ impl Lens {
 
     /// Raster offset of a point at depth `z` seen through lens position `(lu, lv)` (unit disk).
     #[inline]
-    pub fn offset(&self, z: f64, (lu, lv): (f32, f32)) -> (f64, f64) {
-        let k = self.radius * (1.0 / self.focal_distance - 1.0 / z);
+    pub fn offset(&self, z: f64, l: (f32, f32)) -> (f64, f64) {
+        self.offset_by(self.factor(z), l)
+    }
+
+    /// The lens factor `k(z) = R·(1/zf − 1/z)` of depth `z`: [`Lens::offset`] is `k·l` scaled,
+    /// so a point whose depth does not change computes it once.
+    #[inline]
+    pub fn factor(&self, z: f64) -> f64 {
+        self.radius * (1.0 / self.focal_distance - 1.0 / z)
+    }
+
+    /// [`Lens::offset`] of a point with lens factor `k` (the same bits).
+    #[inline]
+    pub fn offset_by(&self, k: f64, (lu, lv): (f32, f32)) -> (f64, f64) {
         (
             k * f64::from(lu) * self.scale[0],
             k * f64::from(lv) * self.scale[1],

@@ -316,14 +316,15 @@ fn sample_moving_micropolygon(
         fixed: None,
     };
     if m.keys.len() == 1 {
-        let mut v = [DVec3::ZERO; 4];
-        for (q, &k) in v.iter_mut().zip(&quad) {
-            let Some(p) = project(m.keys[0][k].as_dvec3()) else {
+        let (mut v, mut k) = ([DVec3::ZERO; 4], [0.0; 4]);
+        for ((q, f), &i) in v.iter_mut().zip(&mut k).zip(&quad) {
+            let Some(p) = project(m.keys[0][i].as_dvec3()) else {
                 return 0;
             };
             *q = p;
+            *f = lens.map_or(0.0, |l| l.factor(p.z));
         }
-        mp.fixed = Some(v);
+        mp.fixed = Some((v, k));
     }
     // Most micropolygons of a grid that several buckets share miss this one.
     if mp.pixels(key_box, out).is_none() {
@@ -463,9 +464,9 @@ struct MovingMicropolygon<'a> {
     lens_cells: bool,
     /// Extra growth of a stratum's box for the rounding of sample times (pixels).
     pad: f64,
-    /// Its raster corners when it does not move (one key: only a lens blurs it), projected
-    /// once instead of per sample.
-    fixed: Option<[DVec3; 4]>,
+    /// Its raster corners and their lens factors when it does not move (one key: only a lens
+    /// blurs it), computed once instead of per sample.
+    fixed: Option<([DVec3; 4], [f64; 4])>,
 }
 
 impl MovingMicropolygon<'_> {
@@ -555,6 +556,7 @@ impl MovingMicropolygon<'_> {
         let sw = out.size[0];
         let pad = self.reach.iter().copied().fold(0.0, f64::max) + 3.0 * self.pad + 1e-6;
         let path = union_path(bounds);
+        let (k0, k1) = (lens.factor(z0), lens.factor(z1));
         let mut hits = 0;
         for j in 0..n {
             let o = lens.offset_box(z0, z1, lens.stratum_bound(j));
@@ -577,11 +579,13 @@ impl MovingMicropolygon<'_> {
                     let dt = f64::from(ts.t) - sb.t0;
                     let x = f64::from(ts.x) - sb.v[0] * dt;
                     let y = f64::from(ts.y) - sb.v[1] * dt;
-                    let (ex, ey) = lens.offset_range(z0, z1, ts.lens);
-                    if x < b[0] + ex[0] - pad
-                        || x > b[1] + ex[1] + pad
-                        || y < b[2] + ey[0] - pad
-                        || y > b[3] + ey[1] + pad
+                    // `Lens::offset_range` with the depth range's factors computed once.
+                    let ((ax, ay), (cx, cy)) =
+                        (lens.offset_by(k0, ts.lens), lens.offset_by(k1, ts.lens));
+                    if x < b[0] + ax.min(cx) - pad
+                        || x > b[1] + ax.max(cx) + pad
+                        || y < b[2] + ay.min(cy) - pad
+                        || y > b[3] + ay.max(cy) + pad
                     {
                         continue;
                     }
@@ -601,9 +605,16 @@ impl MovingMicropolygon<'_> {
         project: &impl Fn(DVec3) -> Option<DVec3>,
         out: &mut SampleBuffer,
     ) -> Option<u64> {
-        let (x, y) = (f64::from(ts.x), f64::from(ts.y));
+        if let (Some(lens), Some((mut v, k))) = (self.lens, self.fixed) {
+            for (q, k) in v.iter_mut().zip(k) {
+                let (dx, dy) = lens.offset_by(k, ts.lens);
+                q.x += dx;
+                q.y += dy;
+            }
+            return Some(self.sample_corners(v, ts, out));
+        }
         let mut v = match (&sb.chord, self.fixed) {
-            (_, Some(v)) => v,
+            (_, Some((v, _))) => v,
             (Some(c), None) => c.corners(f64::from(ts.t), sb.t0)?,
             (None, None) => {
                 let seg = segment(&self.m.times, f64::from(ts.t));
@@ -621,6 +632,18 @@ impl MovingMicropolygon<'_> {
                 q.y += dy;
             }
         }
+        Some(self.sample_corners(v, ts, out))
+    }
+
+    /// Tests sample `ts` against the micropolygon with raster corners `v` (moved to the
+    /// sample's time and lens position); deposits its hits.
+    fn sample_corners(
+        &self,
+        v: [DVec3; 4],
+        ts: &crate::time_strata::TimedSample,
+        out: &mut SampleBuffer,
+    ) -> u64 {
+        let (x, y) = (f64::from(ts.x), f64::from(ts.y));
         let s = ts.s as usize;
         let mut hits = 0;
         for (tri, reach) in split_quad([0, 1, 2, 3], self.reach) {
@@ -657,6 +680,6 @@ impl MovingMicropolygon<'_> {
             );
             hits += 1;
         }
-        Some(hits)
+        hits
     }
 }
