@@ -311,16 +311,18 @@ fn out_of_focus_disk_blurs_by_the_thin_lens_circle_of_confusion() {
     assert!(coc > 8.0, "the test needs a visible blur, got {coc}");
     // 2 % on the radius (measured 0.2 %): the spot covers ~π·c² ≈ 760 pixels of 256 samples
     // each, so the second moment's sampling error is far smaller; the disk's own size enters
-    // only through ρ²/2 (ρ ≈ 5 px against c ≈ 15.5 px). 3 % on the area (measured +1.4 %):
-    // grid borders reach outward by a fraction of a pixel so neighbouring grids never crack
-    // (`seam_reach` in the hider), which on a 5-pixel disk adds about a pixel of area.
+    // only through ρ²/2 (ρ ≈ 5 px against c ≈ 15.5 px). 7 % on the area (measured +5.4 %;
+    // +1.4 % when the disk was diced at the full rate): grid borders reach outward by up to
+    // twice a border chord's sagitta so neighbouring grids never crack (`seam_reach` in the
+    // hider), and out of focus the disk dices `focusfactor` 1.94× coarser (`lens::focus_factor`),
+    // 2-pixel chords whose reach (about 0.2 px around a 31-pixel rim) adds about 6 px².
     assert!(
         (measured - coc).abs() < 0.02 * coc,
         "coc {measured} vs {coc}"
     );
     let want_area = std::f64::consts::PI * rho * rho;
     assert!(
-        (area - want_area).abs() < 0.03 * want_area,
+        (area - want_area).abs() < 0.07 * want_area,
         "area {area} vs {want_area}"
     );
 }

@@ -79,7 +79,9 @@ impl<'f> Hider<'f> {
             cy1 as f32 + margin,
         ];
         let mut warnings = Vec::new();
-        let lens = Lens::new(opts.depth_of_field, cam);
+        let samples = opts.pixel_samples;
+        let lens = Lens::new(opts.depth_of_field, cam)
+            .map(|l| l.with_strata(samples, frame.number.unwrap_or(0)));
         if opts.depth_of_field.is_some() && !cam.is_perspective() {
             warnings.push(Diagnostic {
                 severity: Severity::Warning,
@@ -150,7 +152,7 @@ impl<'f> Hider<'f> {
         } = self;
         let opts = &frame.options;
         let cam = &frame.camera;
-        let lens = refiner.lens;
+        let lens = refiner.lens.clone();
         let layout = BucketLayout::new(cam.crop, opts.bucket_size, margin);
         let setup = SampleSetup {
             spp: opts.pixel_samples,

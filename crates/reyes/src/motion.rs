@@ -11,6 +11,12 @@
 //! micropolygon moved to the sample's own time and lens position, with the same edge rules as
 //! a still micropolygon. So a fast micropolygon costs about one test per pixel it sweeps plus
 //! what it would cost still, instead of every sample of its whole path.
+//!
+//! A micropolygon the lens blurs by half a pixel or more is bounded per lens cell instead
+//! (`sample_lens_cells`): every pixel has one sample per cell of the lens grid
+//! (`sampling::lens_strata`), so per cell only the pixels its path reaches through that cell
+//! (a `1/√n` share of the circle of confusion per axis) are visited; whichever of the two
+//! visits fewer pixels is used (`lens_cells_pay`).
 use crate::dice::ShadedGrid;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
@@ -302,8 +308,24 @@ fn sample_moving_micropolygon(
         z: [z0, z1],
         persp,
         lens,
+        lens_cells: lens.is_some_and(|l| {
+            let (gx, gy) = l.blur_radius(z0, z1);
+            gx.max(gy) >= LENS_CELL_BLUR
+        }),
         pad: 0.0,
+        fixed: None,
     };
+    if m.keys.len() == 1 {
+        let (mut v, mut k) = ([DVec3::ZERO; 4], [0.0; 4]);
+        for ((q, f), &i) in v.iter_mut().zip(&mut k).zip(&quad) {
+            let Some(p) = project(m.keys[0][i].as_dvec3()) else {
+                return 0;
+            };
+            *q = p;
+            *f = lens.map_or(0.0, |l| l.factor(p.z));
+        }
+        mp.fixed = Some((v, k));
+    }
     // Most micropolygons of a grid that several buckets share miss this one.
     if mp.pixels(key_box, out).is_none() {
         return 0;
@@ -344,6 +366,11 @@ fn sample_moving_micropolygon(
             return 0;
         }
     }
+    if let Some(lens) = lens.filter(|_| mp.lens_cells && lens_cells_pay(&mp, bounds, n)) {
+        return mp
+            .sample_lens_cells(lens, bounds, project, out)
+            .unwrap_or(0);
+    }
     let mut hits = 0;
     for (k, &b) in bounds.iter().enumerate() {
         match mp.sample_stratum(b, stratum_samples(k, strata, n), project, out) {
@@ -352,6 +379,64 @@ fn sample_moving_micropolygon(
         }
     }
     hits
+}
+
+/// The lens blur (raster radius) from which a micropolygon is bounded per lens cell: below
+/// it, the cells' boxes would all be about the micropolygon's own, and one box per time
+/// stratum costs less.
+const LENS_CELL_BLUR: f64 = 0.5;
+
+/// The box of a micropolygon's paths over every stratum.
+fn union_path(bounds: &[StratumBound]) -> [f64; 4] {
+    bounds.iter().fold(
+        [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |a, b| {
+            let p = b.path;
+            [
+                a[0].min(p[0]),
+                a[1].max(p[1]),
+                a[2].min(p[2]),
+                a[3].max(p[3]),
+            ]
+        },
+    )
+}
+
+/// Whether bounding a lens-blurred micropolygon per lens cell (its whole path, a cell's share
+/// of the blur) visits fewer samples than per time stratum (a stratum's path, the whole
+/// blur): the first wins unless it moves much farther than it blurs.
+fn lens_cells_pay(mp: &MovingMicropolygon, bounds: &[StratumBound], n: usize) -> bool {
+    let Some(lens) = mp.lens else { return false };
+    let [z0, z1] = mp.z;
+    let (gx, gy) = lens.blur_radius(z0, z1);
+    let cell = 2.0 / (n as f64).sqrt();
+    let area = |b: [f64; 4], gx: f64, gy: f64| {
+        (b[1] - b[0] + 2.0 * gx + 1.0) * (b[3] - b[2] + 2.0 * gy + 1.0)
+    };
+    let by_cell = n as f64 * area(union_path(bounds), gx * cell, gy * cell);
+    let per_stratum = n as f64 / bounds.len() as f64;
+    let by_time: f64 = bounds
+        .iter()
+        .map(|b| area(b.path, gx, gy) * per_stratum)
+        .sum();
+    by_cell < by_time
+}
+
+/// The buffer's pixels `[x0, x1, y0, y1]` (inclusive, relative to its origin) that the
+/// raster box `b` reaches; `None` when it reaches none.
+fn buffer_pixels(b: [f64; 4], out: &SampleBuffer) -> Option<[i32; 4]> {
+    let [ox, oy] = out.origin;
+    let [sw, sh] = out.size;
+    let qx0 = (b[0].floor() as i32 - ox).max(0);
+    let qx1 = (b[1].floor() as i32 - ox).min(sw as i32 - 1);
+    let qy0 = (b[2].floor() as i32 - oy).max(0);
+    let qy1 = (b[3].floor() as i32 - oy).min(sh as i32 - 1);
+    (qx0 <= qx1 && qy0 <= qy1).then_some([qx0, qx1, qy0, qy1])
 }
 
 /// Buffers a grid's micropolygons reuse: the shutter cuts per stratum count (filled when
@@ -375,8 +460,13 @@ struct MovingMicropolygon<'a> {
     z: [f64; 2],
     persp: bool,
     lens: Option<&'a Lens>,
+    /// Whether the lens blurs it enough (half a pixel) to bound it per lens cell.
+    lens_cells: bool,
     /// Extra growth of a stratum's box for the rounding of sample times (pixels).
     pad: f64,
+    /// Its raster corners and their lens factors when it does not move (one key: only a lens
+    /// blurs it), computed once instead of per sample.
+    fixed: Option<([DVec3; 4], [f64; 4])>,
 }
 
 impl MovingMicropolygon<'_> {
@@ -387,13 +477,8 @@ impl MovingMicropolygon<'_> {
         let grow = self.reach.iter().copied().fold(0.0, f64::max) + self.pad;
         let [z0, z1] = self.z;
         let (gx, gy) = self.lens.map_or((0.0, 0.0), |l| l.blur_radius(z0, z1));
-        let [ox, oy] = out.origin;
-        let [sw, sh] = out.size;
-        let qx0 = ((b[0] - grow - gx).floor() as i32 - ox).max(0);
-        let qx1 = ((b[1] + grow + gx).floor() as i32 - ox).min(sw as i32 - 1);
-        let qy0 = ((b[2] - grow - gy).floor() as i32 - oy).max(0);
-        let qy1 = ((b[3] + grow + gy).floor() as i32 - oy).min(sh as i32 - 1);
-        (qx0 <= qx1 && qy0 <= qy1).then_some([qx0, qx1, qy0, qy1])
+        let (gx, gy) = (grow + gx, grow + gy);
+        buffer_pixels([b[0] - gx, b[1] + gx, b[2] - gy, b[3] + gy], out)
     }
 
     /// Tests the samples at time-ordered positions `run` of every pixel the stratum's path
@@ -449,6 +534,68 @@ impl MovingMicropolygon<'_> {
         Some(hits)
     }
 
+    /// Every sample through a lens that blurs, one lens index `j` at a time: in every pixel
+    /// one sample, whose lens position lies in one lens cell (`sampling::lens_strata`) and
+    /// whose time is anywhere in the shutter. Such a sample sees the micropolygon only inside
+    /// its box over the shutter (`path`, the union of the strata's) shifted by the cell's lens
+    /// offsets over the micropolygon's depths; only the pixels of that box are visited, and a
+    /// sample is then checked against its own time stratum's bound. A cell is `1/n` of the
+    /// lens, so the box is the micropolygon's own size (plus its motion) and about
+    /// `2·CoC/√n` instead of `2·CoC`: about `n·(size + 2·CoC/√n)²` samples tested instead of
+    /// `n·(size + 2·CoC)²`.
+    fn sample_lens_cells(
+        &self,
+        lens: &Lens,
+        bounds: &[StratumBound],
+        project: &impl Fn(DVec3) -> Option<DVec3>,
+        out: &mut SampleBuffer,
+    ) -> Option<u64> {
+        let n = out.n_per;
+        let strata = bounds.len();
+        let [z0, z1] = self.z;
+        let sw = out.size[0];
+        let pad = self.reach.iter().copied().fold(0.0, f64::max) + 3.0 * self.pad + 1e-6;
+        let path = union_path(bounds);
+        let (k0, k1) = (lens.factor(z0), lens.factor(z1));
+        let mut hits = 0;
+        for j in 0..n {
+            let o = lens.offset_box(z0, z1, lens.stratum_bound(j));
+            let bx = [
+                path[0] + o[0] - pad,
+                path[1] + o[1] + pad,
+                path[2] + o[2] - pad,
+                path[3] + o[3] + pad,
+            ];
+            let Some([qx0, qx1, qy0, qy1]) = buffer_pixels(bx, out) else {
+                continue;
+            };
+            for qy in qy0..=qy1 {
+                for qx in qx0..=qx1 {
+                    let base = (qy as usize * sw + qx as usize) * n;
+                    let f = out.timed[base + j].by_lens as usize;
+                    let ts = out.timed[base + f.min(n - 1)];
+                    let sb = &bounds[(f * strata / n).min(strata - 1)];
+                    let b = sb.still;
+                    let dt = f64::from(ts.t) - sb.t0;
+                    let x = f64::from(ts.x) - sb.v[0] * dt;
+                    let y = f64::from(ts.y) - sb.v[1] * dt;
+                    // `Lens::offset_range` with the depth range's factors computed once.
+                    let ((ax, ay), (cx, cy)) =
+                        (lens.offset_by(k0, ts.lens), lens.offset_by(k1, ts.lens));
+                    if x < b[0] + ax.min(cx) - pad
+                        || x > b[1] + ax.max(cx) + pad
+                        || y < b[2] + ay.min(cy) - pad
+                        || y > b[3] + ay.max(cy) + pad
+                    {
+                        continue;
+                    }
+                    hits += self.sample_at(&ts, sb, project, out)?;
+                }
+            }
+        }
+        Some(hits)
+    }
+
     /// Tests one sample against the micropolygon moved to the sample's time and lens
     /// position, with the same edge rules as a still micropolygon; deposits its hits.
     fn sample_at(
@@ -458,10 +605,18 @@ impl MovingMicropolygon<'_> {
         project: &impl Fn(DVec3) -> Option<DVec3>,
         out: &mut SampleBuffer,
     ) -> Option<u64> {
-        let (x, y) = (f64::from(ts.x), f64::from(ts.y));
-        let mut v = match &sb.chord {
-            Some(c) => c.corners(f64::from(ts.t), sb.t0)?,
-            None => {
+        if let (Some(lens), Some((mut v, k))) = (self.lens, self.fixed) {
+            for (q, k) in v.iter_mut().zip(k) {
+                let (dx, dy) = lens.offset_by(k, ts.lens);
+                q.x += dx;
+                q.y += dy;
+            }
+            return Some(self.sample_corners(v, ts, out));
+        }
+        let mut v = match (&sb.chord, self.fixed) {
+            (_, Some((v, _))) => v,
+            (Some(c), None) => c.corners(f64::from(ts.t), sb.t0)?,
+            (None, None) => {
                 let seg = segment(&self.m.times, f64::from(ts.t));
                 let mut v = [DVec3::ZERO; 4];
                 for (vk, &k) in v.iter_mut().zip(&self.quad) {
@@ -477,6 +632,18 @@ impl MovingMicropolygon<'_> {
                 q.y += dy;
             }
         }
+        Some(self.sample_corners(v, ts, out))
+    }
+
+    /// Tests sample `ts` against the micropolygon with raster corners `v` (moved to the
+    /// sample's time and lens position); deposits its hits.
+    fn sample_corners(
+        &self,
+        v: [DVec3; 4],
+        ts: &crate::time_strata::TimedSample,
+        out: &mut SampleBuffer,
+    ) -> u64 {
+        let (x, y) = (f64::from(ts.x), f64::from(ts.y));
         let s = ts.s as usize;
         let mut hits = 0;
         for (tri, reach) in split_quad([0, 1, 2, 3], self.reach) {
@@ -513,6 +680,6 @@ impl MovingMicropolygon<'_> {
             );
             hits += 1;
         }
-        Some(hits)
+        hits
     }
 }

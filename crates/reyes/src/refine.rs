@@ -314,8 +314,7 @@ impl Refiner<'_> {
             counts.culled += 1;
             return;
         }
-        let defocus = self.defocus(&b);
-        let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs, defocus);
+        let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs);
         let surface = self.corner_raster(&surface);
         let micropolygons = (nu - 1) * (nv - 1);
         let too_big = micropolygons > self.grid_size
@@ -393,37 +392,26 @@ impl Refiner<'_> {
         raster
     }
 
-    /// The smallest circle-of-confusion diameter (raster pixels, the larger axis) of any point
-    /// in the box: 0 without a lens or when the focal plane passes through it. A piece this
-    /// blurred shows no detail finer than that, and dicing it at the shading rate is what
-    /// made a defocused piece near the lens cost minutes (each micropolygon is tested against
-    /// every sample its circle of confusion reaches: fuzz finding `render_rib_slow_1`).
-    fn defocus(&self, b: &Bound) -> f64 {
+    /// The smallest circle of confusion (raster pixels across) over the depths of `pts`: zero
+    /// without a lens or when they straddle the focal plane.
+    fn coc(&self, pts: &[Vec3]) -> f64 {
         let Some(lens) = &self.lens else { return 0.0 };
-        let (z0, z1) = (
-            f64::from(b.min.z).max(self.eye_z()),
-            f64::from(b.max.z).max(self.eye_z()),
-        );
-        if (z0..=z1).contains(&lens.focal_distance) {
-            return 0.0;
-        }
-        let radius = |z: f64| {
-            let (x, y) = lens.blur_radius(z, z);
-            x.max(y)
-        };
-        2.0 * radius(z0).min(radius(z1))
+        let z = pts.iter().map(|p| f64::from(p.z));
+        let (z0, z1) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| {
+            (a.min(z), b.max(z))
+        });
+        lens.min_blur_diameter(z0.max(self.eye_z()), z1)
     }
 
     /// Micropolygons per side so each is about `ShadingRate` pixels in area: the longest
-    /// raster-space row/column of a coarse test dice, divided by √ShadingRate; for a moving or
-    /// defocused piece also by its blur ([`motion_factor`] of the larger of the motion and
-    /// the smallest circle of confusion, `defocus`).
+    /// raster-space row/column of a coarse test dice, divided by √ShadingRate; for a moving
+    /// piece also by its motion blur ([`motion_factor`]), for one out of focus by its circle of
+    /// confusion (`lens::focus_factor`), whichever is larger.
     fn dice_rates(
         &self,
         prim: &dyn Primitive,
         later: &[PrimRef],
         attrs: &Attributes,
-        defocus: f64,
     ) -> (usize, usize) {
         let g = prim.dice(TEST_DICE, TEST_DICE);
         let pts: Vec<Option<DVec3>> = g.p.iter().map(|&p| self.project(p)).collect();
@@ -455,7 +443,8 @@ impl Refiner<'_> {
                     .sum(),
             );
         }
-        let step = f64::from(attrs.shading_rate).sqrt() * motion_factor(blur.max(defocus));
+        let step = f64::from(attrs.shading_rate).sqrt()
+            * motion_factor(blur).max(crate::lens::focus_factor(self.coc(&g.p)));
         let rate = |l: f64| -> usize {
             let n = (l / step).ceil().clamp(1.0, 4096.0) as usize;
             if attrs.dice_binary {

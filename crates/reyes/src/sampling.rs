@@ -46,15 +46,78 @@ fn shuffled(n: usize, seed: u32) -> Vec<u32> {
     p
 }
 
-/// Time (in `[open, close]`) and lens position (unit disk) of every sample of pixel
-/// `(px, py)`, in the order of [`sample_position`]'s `(i, j)` (index `j·samples[0] + i`),
-/// appended to `out`.
+/// One sample's time, lens position and time stratum, as [`sample_time_lens`] makes them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeLens {
+    /// Time in `[open, close]`.
+    pub t: f32,
+    /// Lens position on the unit disk.
+    pub lens: (f32, f32),
+    /// Which of the pixel's `n` equal slices of the shutter `t` lies in (a permutation of
+    /// `0..n` over the pixel's samples): its position when the samples are put in time order.
+    pub stratum: u32,
+    /// Its lens index: the lens position lies in cell [`lens_strata`]`[lens_index]`.
+    pub lens_index: u32,
+}
+
+/// The lens stratum (cell of the `samples[0] × samples[1]` lens grid, row by row) of lens
+/// index `j`, for every pixel of a frame: `lens_strata(..)[j]`. A pixel's sample of time
+/// stratum `f` has lens index `(f − r) mod n`, `r` a shift hashed from the pixel.
 ///
-/// Both are stratified over the pixel's samples: sample `s` takes time stratum `πt(s)` of `n`
-/// and lens stratum `πl(s)` of the `samples[0] × samples[1]` lens grid, where `πt` and `πl`
-/// are permutations hashed from (pixel, frame) only, each with its own seed, so time and lens
-/// are decorrelated from the x/y strata and from each other, and the same for any bucket or
-/// thread count.
+/// One numbering of the lens cells for all pixels lets the hider bound a micropolygon once
+/// per lens index for its lens shift: the samples of lens index `j` all look through one lens
+/// cell, a `1/n` part of the lens, so each is tested only where the micropolygon can appear
+/// through that cell (`motion.rs`). The per-pixel shift keeps every sample's time uniform over
+/// the shutter and independent of its lens cell (a fixed pairing of time and lens strata
+/// would integrate only `n` of the `n²` time-lens cells, a bias on things both moving and out
+/// of focus); time and lens stay stratified per pixel, and each pixel pairs its `(x, y)` strata
+/// with them by its own permutation.
+pub fn lens_strata(samples: [u32; 2], frame: i32) -> Vec<u32> {
+    let n = (samples[0] * samples[1]) as usize;
+    shuffled(n, hash(frame as u32 ^ 0x846c_a68b) ^ 0x5851_f42d)
+}
+
+thread_local! {
+    /// The last [`lens_strata`] a thread made, with its `(samples, frame)`: every pixel of a
+    /// frame asks for the same one.
+    static LENS_STRATA: std::cell::RefCell<([u32; 2], i32, Vec<u32>)> =
+        const { std::cell::RefCell::new(([0, 0], 0, Vec::new())) };
+}
+
+/// [`lens_strata`]`(samples, frame)[j]` for every `j`, through the thread's cache.
+fn with_lens_strata<R>(samples: [u32; 2], frame: i32, f: impl FnOnce(&[u32]) -> R) -> R {
+    LENS_STRATA.with(|c| {
+        let mut c = c.borrow_mut();
+        if c.0 != samples || c.1 != frame || c.2.is_empty() {
+            *c = (samples, frame, lens_strata(samples, frame));
+        }
+        f(&c.2)
+    })
+}
+
+/// The square `[u0, u1] × [v0, v1]` of the unit square that lens stratum `l` jitters over
+/// before the concentric map onto the disk.
+pub fn lens_cell(l: u32, samples: [u32; 2]) -> [f32; 4] {
+    let (li, lj) = (l % samples[0], l / samples[0]);
+    let (sx, sy) = (samples[0] as f32, samples[1] as f32);
+    [
+        li as f32 / sx,
+        (li + 1) as f32 / sx,
+        lj as f32 / sy,
+        (lj + 1) as f32 / sy,
+    ]
+}
+
+/// Time (in `[open, close]`), lens position (unit disk) and time stratum of every sample of
+/// pixel `(px, py)`, in the order of [`sample_position`]'s `(i, j)` (index
+/// `j·samples[0] + i`), appended to `out`.
+///
+/// Times are stratified over the pixel's samples: sample `s` takes time stratum `πt(s)` of `n`,
+/// where `πt` is a permutation hashed from (pixel, frame) only, so time is decorrelated from
+/// the x/y strata and the same for any bucket or thread count. The lens position follows the
+/// time stratum shifted per pixel: stratum `f` looks through lens cell [`lens_strata`]`[j]`,
+/// `j = (f − r) mod n`, jittered inside it, so the lens positions are stratified over the lens
+/// grid too.
 pub fn sample_time_lens(
     px: i32,
     py: i32,
@@ -62,7 +125,7 @@ pub fn sample_time_lens(
     frame: i32,
     jitter: bool,
     shutter: [f32; 2],
-    out: &mut Vec<(f32, (f32, f32))>,
+    out: &mut Vec<TimeLens>,
 ) {
     let n = (samples[0] * samples[1]) as usize;
     let pixel = hash(
@@ -71,28 +134,36 @@ pub fn sample_time_lens(
             ^ hash(frame as u32 ^ 0x1b87_3593),
     );
     let time_perm = shuffled(n, pixel ^ 0x7feb_352d);
-    let lens_perm = shuffled(n, hash(pixel ^ 0x846c_a68b));
+    let shift = ((u64::from(hash(pixel ^ 0x2545_f491)) * n as u64) >> 32) as u32;
     let [open, close] = shutter;
-    for s in 0..n {
-        let (jt, ju, jv) = if jitter {
-            let h = hash(pixel ^ hash(s as u32 ^ 0x3243_f6a8));
-            (
-                unit(hash(h)),
-                unit(hash(h ^ 0x9e37_79b9)),
-                unit(hash(h ^ 0x68e3_1da4)),
-            )
-        } else {
-            (0.5, 0.5, 0.5)
-        };
-        let t = open + (close - open) * ((time_perm[s] as f32 + jt) / n as f32).min(1.0);
-        let l = lens_perm[s];
-        let (li, lj) = (l % samples[0], l / samples[0]);
-        let lens = crate::lens::concentric_disk(
-            (li as f32 + ju) / samples[0] as f32,
-            (lj as f32 + jv) / samples[1] as f32,
-        );
-        out.push((t, lens));
-    }
+    with_lens_strata(samples, frame, |lens_of| {
+        for (s, &f) in time_perm.iter().enumerate() {
+            let (jt, ju, jv) = if jitter {
+                let h = hash(pixel ^ hash(s as u32 ^ 0x3243_f6a8));
+                (
+                    unit(hash(h)),
+                    unit(hash(h ^ 0x9e37_79b9)),
+                    unit(hash(h ^ 0x68e3_1da4)),
+                )
+            } else {
+                (0.5, 0.5, 0.5)
+            };
+            let t = open + (close - open) * ((f as f32 + jt) / n as f32).min(1.0);
+            let j = (f + n as u32 - shift) % n as u32;
+            let l = lens_of[j as usize];
+            let (li, lj) = (l % samples[0], l / samples[0]);
+            let lens = crate::lens::concentric_disk(
+                (li as f32 + ju) / samples[0] as f32,
+                (lj as f32 + jv) / samples[1] as f32,
+            );
+            out.push(TimeLens {
+                t,
+                lens,
+                stratum: f,
+                lens_index: j,
+            });
+        }
+    });
 }
 
 #[cfg(test)]
@@ -116,11 +187,17 @@ mod tests {
         sample_time_lens(5, -2, [4, 3], 7, true, [1.0, 3.0], &mut out);
         let mut strata: Vec<usize> = out
             .iter()
-            .map(|&(t, _)| ((t - 1.0) / 2.0 * 12.0).floor() as usize)
+            .map(|tl| ((tl.t - 1.0) / 2.0 * 12.0).floor() as usize)
             .collect();
+        // Each sample's time lies in the stratum it names.
+        for (tl, &k) in out.iter().zip(&strata) {
+            assert_eq!(tl.stratum as usize, k);
+        }
         strata.sort();
         assert_eq!(strata, (0..12).collect::<Vec<_>>());
-        assert!(out.iter().all(|&(_, (u, v))| u * u + v * v <= 1.0 + 1e-5));
+        assert!(out
+            .iter()
+            .all(|tl| tl.lens.0.powi(2) + tl.lens.1.powi(2) <= 1.0 + 1e-5));
         // The permutation differs between pixels (decorrelated), and repeats for the same one.
         let mut again = Vec::new();
         sample_time_lens(5, -2, [4, 3], 7, true, [1.0, 3.0], &mut again);
@@ -128,5 +205,56 @@ mod tests {
         let mut other = Vec::new();
         sample_time_lens(6, -2, [4, 3], 7, true, [1.0, 3.0], &mut other);
         assert_ne!(out, other);
+    }
+
+    /// Lens index `j` of every pixel looks through lens cell `lens_strata[j]`, a pixel's samples
+    /// cover every lens cell once, the lens cell does not follow the `(x, y)` stratum (sample 0
+    /// sees different cells in different pixels) and the time-lens pairing varies by pixel.
+    #[test]
+    fn lens_positions_follow_the_time_stratum_and_fill_every_cell() {
+        let spp = [4, 3];
+        let cells = lens_strata(spp, 7);
+        let mut first_cells = std::collections::BTreeSet::new();
+        let mut shifts = std::collections::BTreeSet::new();
+        for (px, py) in [(0, 0), (5, -2), (-40, 17), (300, 9), (1, 1), (2, 1)] {
+            let mut out = Vec::new();
+            sample_time_lens(px, py, spp, 7, true, [0.0, 1.0], &mut out);
+            let mut seen = [false; 12];
+            for tl in &out {
+                let l = cells[tl.lens_index as usize];
+                seen[l as usize] = true;
+                let [u0, u1, v0, v1] = lens_cell(l, spp);
+                // The lens position is the concentric image of a point of the cell: invert
+                // the map by brute force on a fine grid of the cell.
+                let mut best = f32::MAX;
+                for i in 0..=64 {
+                    for j in 0..=64 {
+                        let u = u0 + (u1 - u0) * i as f32 / 64.0;
+                        let v = v0 + (v1 - v0) * j as f32 / 64.0;
+                        let (x, y) = crate::lens::concentric_disk(u, v);
+                        best = best.min((x - tl.lens.0).hypot(y - tl.lens.1));
+                    }
+                }
+                assert!(
+                    best < 0.03,
+                    "pixel ({px}, {py}) stratum {}: {best}",
+                    tl.stratum
+                );
+            }
+            assert!(
+                seen.iter().all(|&s| s),
+                "pixel ({px}, {py}) misses a lens cell"
+            );
+            first_cells.insert(cells[out[0].lens_index as usize]);
+            // One shift per pixel: time stratum minus lens index is the same for every sample.
+            let r = |tl: &TimeLens| (tl.stratum + 12 - tl.lens_index) % 12;
+            assert!(out.iter().all(|tl| r(tl) == r(&out[0])));
+            shifts.insert(r(&out[0]));
+        }
+        assert!(first_cells.len() > 1);
+        assert!(
+            shifts.len() > 1,
+            "the time-lens shift does not vary between pixels"
+        );
     }
 }

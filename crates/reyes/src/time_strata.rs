@@ -9,6 +9,7 @@
 //! micropolygon is bounded once per stratum (over that part of the shutter only) and each
 //! bound visits only its stratum's run in every pixel it covers: a micropolygon sweeping `D`
 //! pixels costs about `D + n` tests per pixel row it covers instead of `D·n`.
+use crate::sampling::TimeLens;
 use std::ops::Range;
 
 /// A sample as a moving micropolygon visits it: raster position, time, lens position (unit
@@ -21,25 +22,45 @@ pub(crate) struct TimedSample {
     pub lens: (f32, f32),
     /// Index of the sample in the buffer (pixel-major, `sample_position` order).
     pub s: u32,
+    /// Not about this sample: the time-ordered position in this pixel of the sample whose
+    /// lens index (`sampling::lens_strata`) equals this one's position, so a lens cell finds
+    /// its sample in every pixel without a search.
+    pub by_lens: u32,
 }
 
-/// Appends one pixel's samples in time order (ties by index, so the order is a function of
-/// the samples alone). `first` is the buffer index of the pixel's first sample.
+/// Appends one pixel's samples in time order: the sample of time stratum `f` at position `f`
+/// (its times are non-decreasing in `f`, since they are `open + (close − open)·(f + j)/n`
+/// rounded monotonically), with the lens index table `by_lens` filled in. `first` is the
+/// buffer index of the pixel's first sample.
 pub(crate) fn push_time_ordered(
     pos: &[(f32, f32)],
-    time_lens: &[(f32, (f32, f32))],
+    time_lens: &[TimeLens],
     first: usize,
     out: &mut Vec<TimedSample>,
 ) {
-    let mut order: Vec<usize> = (0..pos.len()).collect();
-    order.sort_by(|&a, &b| time_lens[a].0.total_cmp(&time_lens[b].0).then(a.cmp(&b)));
-    out.extend(order.into_iter().map(|i| TimedSample {
-        x: pos[i].0,
-        y: pos[i].1,
-        t: time_lens[i].0,
-        lens: time_lens[i].1,
-        s: (first + i) as u32,
-    }));
+    let start = out.len();
+    let blank = TimedSample {
+        x: 0.0,
+        y: 0.0,
+        t: 0.0,
+        lens: (0.0, 0.0),
+        s: 0,
+        by_lens: 0,
+    };
+    out.resize(start + time_lens.len(), blank);
+    for (i, (tl, p)) in time_lens.iter().zip(pos).enumerate() {
+        out[start + tl.stratum as usize] = TimedSample {
+            x: p.0,
+            y: p.1,
+            t: tl.t,
+            lens: tl.lens,
+            s: (first + i) as u32,
+            by_lens: 0,
+        };
+    }
+    for tl in time_lens {
+        out[start + tl.lens_index as usize].by_lens = tl.stratum;
+    }
 }
 
 /// How many time strata a micropolygon whose path spans `sweep` raster pixels beyond its own
