@@ -5,6 +5,7 @@
 use crate::aov::AovLayout;
 use crate::csg::SolidResolver;
 use crate::film::Composited;
+use crate::visible_lists::VisibleLists;
 use glam::Vec3;
 
 /// One micropolygon seen by one sample.
@@ -53,7 +54,7 @@ impl VisiblePoint {
 /// With `aov` (the layout and the bucket's AOV store), each sample's AOV records are
 /// composited the same way into the second result (`stride` floats per sample; empty without).
 pub(crate) fn composite(
-    lists: &mut [Vec<VisiblePoint>],
+    lists: &VisibleLists,
     opaque_z: &[f32],
     solids: Option<&SolidResolver>,
     solid_of: impl Fn(u64) -> u32,
@@ -61,14 +62,16 @@ pub(crate) fn composite(
 ) -> (Vec<Composited>, Vec<f32>) {
     let stride = aov.map_or(0, |(l, _)| l.stride);
     let mut aov_out = vec![0.0f32; lists.len() * stride];
-    let composited = lists
-        .iter_mut()
-        .zip(opaque_z)
+    // One sample's points at a time, in one reused buffer.
+    let mut list = Vec::new();
+    let composited = opaque_z
+        .iter()
         .enumerate()
-        .map(|(s, (l, &oz))| {
+        .map(|(s, &oz)| {
+            lists.collect(s, &mut list);
             let acc = &mut aov_out[s * stride..(s + 1) * stride];
             let aov = aov.map(|(layout, store)| (layout, store, acc));
-            composite_sample(l, oz, solids, &solid_of, aov)
+            composite_sample(&mut list, oz, solids, &solid_of, aov)
         })
         .collect();
     (composited, aov_out)
