@@ -54,32 +54,55 @@ pub(crate) fn floor_to_i32(x: f32) -> i32 {
     }
 }
 
+/// The raster bounds of a grid's rows and columns of micropolygons, found once when the grid
+/// is shaded and used by every bucket that samples it: a micropolygon's bound lies in both its
+/// row's and its column's.
+pub(crate) struct GridBands {
+    /// Per row `j` of micropolygons (vertex rows `j` and `j + 1`), and per column `i`.
+    rows: Vec<RasterBox>,
+    cols: Vec<RasterBox>,
+    /// The largest outward reach of any edge of the grid (raster pixels).
+    grow: f32,
+}
+
+impl GridBands {
+    /// The bands of an `nu × nv` grid of raster positions whose border segments reach out by
+    /// `seam` (see [`ShadedGrid::seam`]).
+    pub fn new(pos: &[glam::Vec3], nu: usize, nv: usize, seam: &[Vec<f64>; 4]) -> GridBands {
+        let mut rows = vec![EMPTY; nv];
+        let mut cols = vec![EMPTY; nu];
+        if pos.len() >= nu * nv {
+            for (j, row) in rows.iter_mut().enumerate() {
+                for (i, col) in cols.iter_mut().enumerate() {
+                    let p = pos[j * nu + i];
+                    *row = add(*row, p.x, p.y);
+                    *col = add(*col, p.x, p.y);
+                }
+            }
+        }
+        let pairs = |v: Vec<RasterBox>| v.windows(2).map(|w| union(w[0], w[1])).collect();
+        GridBands {
+            rows: pairs(rows),
+            cols: pairs(cols),
+            grow: seam.iter().flatten().copied().fold(0.0f64, f64::max) as f32,
+        }
+    }
+}
+
 impl SampleBuffer {
     /// Samples every micropolygon of a still grid (piece `id`); returns the samples hit.
     pub fn sample_still_grid(&mut self, g: &ShadedGrid, id: usize) -> u64 {
         let (nu, nv) = (g.nu, g.nv);
-        if nu < 2 || nv < 2 || g.pos.len() < nu * nv {
+        let bands = &g.bands;
+        if nu < 2 || nv < 2 || g.pos.len() < nu * nv || bands.rows.len() + 1 != nv {
             return 0;
         }
-        // Bounds of each vertex row and column, and the largest edge reach of the grid: a
-        // micropolygon's bound lies in its two rows' and its two columns' bounds.
-        let mut rows = vec![EMPTY; nv];
-        let mut cols = vec![EMPTY; nu];
-        for (j, row) in rows.iter_mut().enumerate() {
-            for (i, col) in cols.iter_mut().enumerate() {
-                let p = g.pos[j * nu + i];
-                *row = add(*row, p.x, p.y);
-                *col = add(*col, p.x, p.y);
-            }
-        }
-        let grow = g.seam.iter().flatten().copied().fold(0.0f64, f64::max) as f32;
-        let col_reaches: Vec<bool> = cols
-            .windows(2)
-            .map(|c| self.box_may_reach(union(c[0], c[1]), grow))
+        let col_reaches: Vec<bool> = (bands.cols.iter())
+            .map(|&c| self.box_may_reach(c, bands.grow))
             .collect();
         let mut hits = 0;
-        for j in 0..nv - 1 {
-            if !self.box_may_reach(union(rows[j], rows[j + 1]), grow) {
+        for (j, &row) in bands.rows.iter().enumerate() {
+            if !self.box_may_reach(row, bands.grow) {
                 continue;
             }
             for (i, _) in col_reaches.iter().enumerate().filter(|c| *c.1) {
