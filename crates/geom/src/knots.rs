@@ -107,8 +107,20 @@ impl KnotVector {
             return;
         }
         // Degree p−1 functions N_{span−p+1 … span, p−1}.
-        let mut lower = vec![0.0; p];
-        self.basis_of_degree(span, t, p - 1, &mut lower);
+        with_scratch(p, |lower| self.basis_with_lower(span, t, lower, n, dn));
+    }
+
+    /// [`KnotVector::basis`] for degree `p = lower.len() ≥ 1`, `lower` a scratch buffer.
+    fn basis_with_lower(
+        &self,
+        span: usize,
+        t: f64,
+        lower: &mut [f64],
+        n: &mut [f64],
+        dn: &mut [f64],
+    ) {
+        let p = lower.len();
+        self.basis_of_degree(span, t, p - 1, lower);
         let u = &self.knots;
         for k in 0..=p {
             let j = span + k - p;
@@ -177,9 +189,24 @@ impl KnotVector {
 
     /// Algorithm A2.2: the `q + 1` degree-`q` functions non-zero on `span`.
     fn basis_of_degree(&self, span: usize, t: f64, q: usize, out: &mut [f64]) {
+        with_scratch(q + 1, |left| {
+            with_scratch(q + 1, |right| {
+                self.basis_of_degree_in(span, t, out, left, right)
+            })
+        });
+    }
+
+    /// [`KnotVector::basis_of_degree`] with `left` and `right` scratch buffers of `q + 1`.
+    fn basis_of_degree_in(
+        &self,
+        span: usize,
+        t: f64,
+        out: &mut [f64],
+        left: &mut [f64],
+        right: &mut [f64],
+    ) {
         let u = &self.knots;
-        let mut left = vec![0.0; q + 1];
-        let mut right = vec![0.0; q + 1];
+        let q = left.len() - 1;
         out[0] = 1.0;
         for j in 1..=q {
             left[j] = t - u[span + 1 - j];
@@ -193,6 +220,18 @@ impl KnotVector {
             }
             out[j] = saved;
         }
+    }
+}
+
+/// Runs `f` on `n` zeroed floats, on the stack for the orders curves and patches use: the
+/// basis is evaluated at every diced vertex, and allocating its buffers there was 7% of
+/// `rib/geometry.rib`'s CPU (issue 21 part 3).
+fn with_scratch<R>(n: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
+    const INLINE: usize = 16;
+    if n <= INLINE {
+        f(&mut [0.0; INLINE][..n])
+    } else {
+        f(&mut vec![0.0; n])
     }
 }
 

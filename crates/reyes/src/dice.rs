@@ -9,6 +9,7 @@ use crate::lens::Lens;
 use crate::motion::GridMotion;
 use crate::refine::Piece;
 use crate::shader::GridShader;
+use crate::still_grid::GridBands;
 use glam::Vec3;
 use illume_ri::Frame;
 use std::sync::atomic::Ordering::Relaxed;
@@ -42,6 +43,8 @@ pub(crate) struct ShadedGrid {
     pub(crate) motion: Option<GridMotion>,
     /// Set when displacement moved the grid farther than its `displacementbound`.
     pub(crate) overflow: Option<Overflow>,
+    /// Raster bounds of its rows and columns of micropolygons, for the still hider.
+    pub(crate) bands: GridBands,
 }
 
 impl ShadedGrid {
@@ -248,9 +251,11 @@ pub(crate) fn dice_and_shade(
     counters
         .micropolygons
         .fetch_add(((nu - 1) * (nv - 1)) as u64, Relaxed);
+    let bands = GridBands::new(&pos, nu, nv, &seam);
     Some(Arc::new(ShadedGrid {
         nu,
         nv,
+        bands,
         pos,
         ci,
         oi,

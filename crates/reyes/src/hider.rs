@@ -165,6 +165,8 @@ impl<'f> Hider<'f> {
             perspective: cam.is_perspective(),
             aov_stride: aov.stride,
             eye_in_solids: crate::csg_eye::solids_containing_eye(frame),
+            drop_hidden: frame.solids.is_empty()
+                && opts.depth_filter != illume_ri::DepthFilter::Midpoint,
         };
         let counters = Counters::default();
         let bands = BandRenderer {

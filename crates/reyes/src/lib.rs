@@ -20,13 +20,16 @@ mod hider;
 mod lazy_bands;
 mod lens;
 mod motion;
+mod raster_triangle;
 mod refine;
 mod row_sink;
 mod sample_buffer;
 pub mod sampling;
 mod shader;
+mod still_grid;
 mod time_strata;
 mod visible;
+mod visible_lists;
 
 pub use aov::{display_filter, AovChannel, AovLayout};
 pub use film::PixelBlock;

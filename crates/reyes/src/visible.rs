@@ -5,6 +5,7 @@
 use crate::aov::AovLayout;
 use crate::csg::SolidResolver;
 use crate::film::Composited;
+use crate::visible_lists::VisibleLists;
 use glam::Vec3;
 
 /// One micropolygon seen by one sample.
@@ -53,7 +54,7 @@ impl VisiblePoint {
 /// With `aov` (the layout and the bucket's AOV store), each sample's AOV records are
 /// composited the same way into the second result (`stride` floats per sample; empty without).
 pub(crate) fn composite(
-    lists: &mut [Vec<VisiblePoint>],
+    lists: &VisibleLists,
     opaque_z: &[f32],
     solids: Option<&SolidResolver>,
     solid_of: impl Fn(u64) -> u32,
@@ -61,14 +62,16 @@ pub(crate) fn composite(
 ) -> (Vec<Composited>, Vec<f32>) {
     let stride = aov.map_or(0, |(l, _)| l.stride);
     let mut aov_out = vec![0.0f32; lists.len() * stride];
-    let composited = lists
-        .iter_mut()
-        .zip(opaque_z)
+    // One sample's points at a time, in one reused buffer.
+    let mut list = Vec::new();
+    let composited = opaque_z
+        .iter()
         .enumerate()
-        .map(|(s, (l, &oz))| {
+        .map(|(s, &oz)| {
+            lists.collect(s, &mut list);
             let acc = &mut aov_out[s * stride..(s + 1) * stride];
             let aov = aov.map(|(layout, store)| (layout, store, acc));
-            composite_sample(l, oz, solids, &solid_of, aov)
+            composite_sample(&mut list, oz, solids, &solid_of, aov)
         })
         .collect();
     (composited, aov_out)
@@ -116,5 +119,153 @@ fn composite_sample(
         rgba: [c.x, c.y, c.z, alpha],
         z: z1,
         z_mid: 0.5 * (z1 + z2),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::csg::NO_SOLID;
+
+    /// A small deterministic generator (xorshift), so the layers are many and varied.
+    struct Rng(u32);
+    impl Rng {
+        fn unit(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 17;
+            self.0 ^= self.0 << 5;
+            (self.0 >> 8) as f32 / 16_777_216.0
+        }
+    }
+
+    /// `n` layers in arrival order: random depths (some equal, to exercise the order
+    /// tie-break), colours premultiplied by their opacity, every fifth one matte, and opaque
+    /// ones where `opaque(k)` says.
+    fn layers(n: usize, seed: u32, opaque: impl Fn(usize) -> bool) -> Vec<VisiblePoint> {
+        let mut r = Rng(seed);
+        (0..n)
+            .map(|k| {
+                let z = 1.0 + (r.unit() * 40.0).floor() * 0.25;
+                let o = if opaque(k) {
+                    Vec3::ONE
+                } else {
+                    Vec3::new(r.unit(), r.unit(), r.unit()) * 0.6 + 0.05
+                };
+                let c = Vec3::new(r.unit(), r.unit(), r.unit()) * o;
+                VisiblePoint {
+                    z,
+                    order: (r.unit() * 8.0) as u64,
+                    c,
+                    o,
+                    tag: VisiblePoint::tag(k % 5 == 3, false, NO_AOV),
+                }
+            })
+            .collect()
+    }
+
+    /// The over operator in f64, front to back over the points sorted by depth then order
+    /// (a stable sort: equal keys keep arrival order), ignoring nothing behind an opaque one
+    /// except by its zero transmittance.
+    fn reference(points: &[VisiblePoint]) -> ([f64; 4], f32) {
+        let mut sorted = points.to_vec();
+        sorted.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.order.cmp(&b.order)));
+        let (mut c, mut t, mut alpha, mut ta) = ([0.0f64; 3], [1.0f64; 3], 0.0f64, 1.0f64);
+        for p in &sorted {
+            let o = p.o.to_array().map(f64::from);
+            let om = (o[0] + o[1] + o[2]) / 3.0;
+            if !p.matte() {
+                for k in 0..3 {
+                    c[k] += t[k] * f64::from(p.c[k]);
+                }
+                alpha += ta * om;
+            }
+            for k in 0..3 {
+                t[k] *= 1.0 - o[k];
+            }
+            ta *= 1.0 - om;
+        }
+        (
+            [c[0], c[1], c[2], alpha],
+            sorted.first().map_or(f32::MAX, |p| p.z),
+        )
+    }
+
+    /// The points a sample keeps from `points` in arrival order: each must be nearer than the
+    /// nearest opaque one before it (the sample buffer's depth test).
+    fn depth_tested(points: &[VisiblePoint]) -> Vec<VisiblePoint> {
+        let mut zo = f32::INFINITY;
+        let mut kept = Vec::new();
+        for p in points {
+            if p.z >= zo {
+                continue;
+            }
+            kept.push(*p);
+            if p.o.min_element() >= 1.0 {
+                zo = p.z;
+            }
+        }
+        kept
+    }
+
+    /// Composites sample 1 of three, holding `points` in arrival order (depth tested and
+    /// opaque ones pushed as the sample buffer does), with or without dropping hidden points.
+    fn composite_one(points: &[VisiblePoint], drop_hidden: bool) -> Composited {
+        let mut lists = VisibleLists::default();
+        lists.reset(3, drop_hidden);
+        let mut opaque_z = [f32::INFINITY; 3];
+        for p in points {
+            if p.o.min_element() >= 1.0 {
+                if p.z >= opaque_z[1] {
+                    continue;
+                }
+                opaque_z[1] = p.z;
+                lists.push_opaque(1, *p);
+            } else if p.z < opaque_z[1] {
+                lists.push(1, *p);
+            }
+        }
+        let (out, aov) = composite(&lists, &opaque_z, None, |_| NO_SOLID, None);
+        assert!(aov.is_empty());
+        assert_eq!(out[0].rgba, [0.0; 4]);
+        out[1]
+    }
+
+    #[test]
+    fn many_transparent_layers_composite_in_depth_order() {
+        for seed in 1..40 {
+            let points = layers(60, seed * 7919, |_| false);
+            let (want, z) = reference(&points);
+            for drop_hidden in [false, true] {
+                let got = composite_one(&points, drop_hidden);
+                for k in 0..4 {
+                    let err = (f64::from(got.rgba[k]) - want[k]).abs();
+                    assert!(err < 1e-5, "seed {seed} channel {k}: {got:?} vs {want:?}");
+                }
+                assert_eq!(got.z, z);
+            }
+        }
+    }
+
+    #[test]
+    fn opaque_layers_hide_the_same_with_or_without_dropping_them() {
+        for seed in 1..40 {
+            // Transparent layers with opaque ones among them, arriving in any depth order.
+            let points = layers(40, seed * 104_729, |k| k % 7 == 2);
+            let kept = composite_one(&points, false);
+            let dropped = composite_one(&points, true);
+            assert_eq!(kept.rgba, dropped.rgba, "seed {seed}");
+            assert_eq!(kept.z, dropped.z);
+            // The f64 over operator on every point that passed the depth test, hidden or
+            // not, gives the same colour: what the opaque points hide does not show.
+            let front = depth_tested(&points);
+            let (want, _) = reference(&front);
+            for k in 0..4 {
+                let err = (f64::from(dropped.rgba[k]) - want[k]).abs();
+                assert!(
+                    err < 1e-5,
+                    "seed {seed} channel {k}: {dropped:?} vs {want:?}"
+                );
+            }
+        }
     }
 }
