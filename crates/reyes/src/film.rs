@@ -1,6 +1,7 @@
 //! The film: what happens to composited samples on their way to pixels. Each bucket's samples
-//! are filtered into a [`PixelBlock`] (pixel filter for colour, depth filter for `z`); the
-//! blocks of one band of buckets are pasted into whole rows and exposed (RI Spec 3.2 `RiExposure`).
+//! are filtered into a [`PixelBlock`] (pixel filter for colour, depth filter for `z`), each
+//! sample splatted over the pixels its weight reaches through the frame's tabulated filter
+//! ([`crate::filter::FilterWeights`]); the blocks of one band of buckets are pasted into whole rows and exposed (RI Spec 3.2 `RiExposure`).
 //! Quantization and dithering are the displays' business (`illume-imageio`, through the
 //! driver): the film hands over premultiplied float RGBA and depth.
 //!
