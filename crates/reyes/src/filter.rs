@@ -63,8 +63,8 @@ impl Factor {
     #[inline]
     fn at(&self, d: f32) -> f32 {
         let a = d.abs();
-        // `!(a <= r)`: zero outside the support and for a NaN offset.
-        if !(a <= self.radius) {
+        // Zero outside the support and for a NaN offset.
+        if a > self.radius || a.is_nan() {
             return 0.0;
         }
         let t = a * self.scale;
