@@ -19,7 +19,7 @@
 //! any width from the kernel's default up; the sum is of |w|, since a negative lobe can cancel
 //! a pixel's signed sum to nearly zero whatever the weights' accuracy). The per-pixel
 //! normalisation divides by the sum of the same tabulated weights, so a flat field stays
-//! exactly flat. The tables cost 8–64 KB per frame.
+//! exactly flat. The tables cost 16–64 KB per frame.
 pub use illume_core::filter::{FilterKind, PixelFilter};
 
 /// Entries per pixel of a factor's half-width.
@@ -87,7 +87,7 @@ enum Eval {
     Exact,
 }
 
-/// A pixel filter ready for the film: its kernel, tabulated when separable.
+/// A pixel filter ready for the film: its kernel, tabulated once per frame.
 #[derive(Clone, Debug)]
 pub(crate) struct FilterWeights {
     pub filter: PixelFilter,
@@ -103,8 +103,8 @@ pub(crate) struct SplatScratch {
 }
 
 impl FilterWeights {
-    /// `filter` tabulated (separable kernels) or evaluated exactly (the radial Catmull–Rom, a
-    /// program's 2-D filter table).
+    /// `filter` tabulated (separable kernels per factor, the radial Catmull–Rom over r²) or
+    /// evaluated exactly (a program's 2-D filter table, already a table).
     pub fn new(filter: &PixelFilter) -> FilterWeights {
         let eval = if filter.is_separable() {
             let (rx, ry) = filter.radius();
