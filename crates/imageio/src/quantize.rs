@@ -56,6 +56,7 @@ impl Quantize {
     /// Quantizes one sample of channel `channel` at pixel (`x`, `y`): the integer code value
     /// (as f64, exact), clamped to `[min, max]` and then to the unsigned range of the stored
     /// type. With `one == 0` returns the value unchanged.
+    #[inline]
     pub fn quantize(&self, value: f32, x: u32, y: u32, channel: u32) -> f64 {
         if self.one == 0 {
             return value as f64;
@@ -203,21 +204,42 @@ pub(crate) fn quantize_image(
     origin: [u32; 2],
 ) -> Samples {
     let nc = image.channels.len().max(1);
-    let w = image.width.max(1) as usize;
-    let at = |i: usize| {
-        let pixel = i / nc;
-        let (x, y) = (
-            origin[0].wrapping_add((pixel % w) as u32),
-            origin[1].wrapping_add((pixel / w) as u32),
-        );
-        quantize.quantize(image.data[i], x, y, (i % nc) as u32)
-    };
-    let n = image.data.len();
-    // Each sample depends only on its own position, so the parallel map is deterministic.
-    use rayon::prelude::*;
+    let row = image.width.max(1) as usize * nc;
+    // Row by row (one task per row, not per sample), the pixel position counted along the
+    // row instead of divided out of the sample index; the same `quantize` per sample.
+    fn rows<T: Send>(
+        image: &crate::Image,
+        (row, nc): (usize, usize),
+        origin: [u32; 2],
+        q: impl Fn(f32, u32, u32, u32) -> T + Sync,
+    ) -> Vec<T> {
+        use rayon::prelude::*;
+        image
+            .data
+            .par_chunks(row)
+            .enumerate()
+            .flat_map_iter(|(y, values)| {
+                let y = origin[1].wrapping_add(y as u32);
+                values.chunks(nc).enumerate().flat_map(move |(x, px)| {
+                    let x = origin[0].wrapping_add(x as u32);
+                    px.iter()
+                        .enumerate()
+                        .map(move |(c, &v)| (v, x, y, c as u32))
+                })
+            })
+            .map(|(v, x, y, c)| q(v, x, y, c))
+            .collect()
+    }
+    let at = |v, x, y, c| quantize.quantize(v, x, y, c);
     match quantize.sample_depth() {
-        SampleDepth::U8 => Samples::U8((0..n).into_par_iter().map(|i| at(i) as u8).collect()),
-        SampleDepth::U16 => Samples::U16((0..n).into_par_iter().map(|i| at(i) as u16).collect()),
-        SampleDepth::Float => Samples::F32((0..n).into_par_iter().map(|i| at(i) as f32).collect()),
+        SampleDepth::U8 => Samples::U8(rows(image, (row, nc), origin, |v, x, y, c| {
+            at(v, x, y, c) as u8
+        })),
+        SampleDepth::U16 => Samples::U16(rows(image, (row, nc), origin, |v, x, y, c| {
+            at(v, x, y, c) as u16
+        })),
+        SampleDepth::Float => Samples::F32(rows(image, (row, nc), origin, |v, x, y, c| {
+            at(v, x, y, c) as f32
+        })),
     }
 }

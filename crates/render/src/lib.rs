@@ -46,6 +46,16 @@ pub fn render(frame: &Frame, settings: &RenderSettings) -> Rendered {
     finish(rendered, &shading)
 }
 
+/// [`render`] with every pixel filter evaluated exactly instead of through the film's
+/// per-frame tables (issue 21 part 3): the reference the tables are tested against.
+#[doc(hidden)]
+pub fn render_with_exact_filter(frame: &Frame, settings: &RenderSettings) -> Rendered {
+    let (mut hider, shading) = prepare(frame, settings);
+    hider.use_exact_filter();
+    let rendered = hider.render(&shading, settings.progress);
+    finish(rendered, &shading)
+}
+
 /// Renders one frame straight into its displays (streaming output, issue 21): finished rows
 /// go to the files while later buckets render, so memory does not grow with the frame (see
 /// [`DisplayStream`] for the display kinds that still need a whole-frame buffer). The files

@@ -12,7 +12,6 @@
 //! names its own `"filter"`/`"filterwidth"` ([`display_filter`]); one filter per variable per
 //! frame. The hider grows its sample reach to the widest display filter of the frame
 //! ([`frame_reach`]), so a wide AOV filter sees the same samples in every bucket.
-use crate::film::SampleRegion;
 use illume_core::filter::{filter_names_list, FilterKind, PixelFilter};
 use illume_ri::{paramlist, Options};
 use illume_rib::ParamList;
@@ -177,59 +176,6 @@ pub(crate) fn frame_reach(opts: &Options, primary: &PixelFilter) -> (f32, f32) {
         .filter_map(|p| display_filter(p, None, primary).ok().flatten())
         .map(|f| f.radius())
         .fold(primary.radius(), |(x, y), (fx, fy)| (x.max(fx), y.max(fy)))
-}
-
-/// Re-develops the channels that have their own filter: for each pixel of `rect`, the
-/// normalised weighted sum of the composited `samples` (`layout.stride` floats each) within
-/// that filter's reach, written over what the pixel filter left in `pixels`.
-pub(crate) fn develop_own_filters(
-    layout: &AovLayout,
-    rect: [u32; 4],
-    region: &SampleRegion,
-    samples: &[f32],
-    pixels: &mut [f32],
-) {
-    let stride = layout.stride;
-    let [px0, px1, py0, py1] = rect;
-    let [sx0, sy0] = region.origin;
-    let (sx1, sy1) = (sx0 + region.size[0] as i32, sy0 + region.size[1] as i32);
-    for (c, &off) in layout.channels.iter().zip(&layout.offsets) {
-        let Some(filter) = &c.filter else { continue };
-        let (rx, ry) = filter.radius();
-        let span = off..off + c.components;
-        let mut acc = vec![0.0f32; c.components];
-        for (k, (x, y)) in (py0..py1)
-            .flat_map(|y| (px0..px1).map(move |x| (x, y)))
-            .enumerate()
-        {
-            let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
-            acc.fill(0.0);
-            let mut wsum = 0.0f32;
-            for qy in ((cy - ry).floor() as i32).max(sy0)..=((cy + ry).floor() as i32).min(sy1 - 1)
-            {
-                for qx in
-                    ((cx - rx).floor() as i32).max(sx0)..=((cx + rx).floor() as i32).min(sx1 - 1)
-                {
-                    let q = ((qy - sy0) as usize) * region.size[0] + (qx - sx0) as usize;
-                    for s in q * region.per_pixel..(q + 1) * region.per_pixel {
-                        let (sx, sy) = region.pos[s];
-                        let w = filter.weight(sx - cx, sy - cy);
-                        if w != 0.0 {
-                            wsum += w;
-                            let rec = &samples[s * stride..(s + 1) * stride];
-                            for (a, v) in acc.iter_mut().zip(&rec[span.clone()]) {
-                                *a += w * v;
-                            }
-                        }
-                    }
-                }
-            }
-            if wsum != 0.0 {
-                acc.iter_mut().for_each(|a| *a /= wsum);
-            }
-            pixels[k * stride + off..k * stride + off + c.components].copy_from_slice(&acc);
-        }
-    }
 }
 
 #[cfg(test)]

@@ -258,7 +258,6 @@ pub(crate) fn render_bucket(
     let (composited, aov_samples) =
         composite(&buf.lists, &buf.opaque_z, solids.as_ref(), solid_of, aov_in);
     let mut block = film.develop(rect, &buf.region(), &composited, (&aov_samples, aov.stride));
-    crate::aov::develop_own_filters(aov, rect, &buf.region(), &aov_samples, &mut block.aov);
     // The imager (RI Spec 3.2 `RiImager`) sees filtered pixels before exposure (`Film::print`).
     shader.image(&mut block);
     counters.filter_ns.fetch_add(ns(t), Relaxed);

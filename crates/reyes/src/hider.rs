@@ -112,7 +112,15 @@ impl<'f> Hider<'f> {
     /// Asks the hider to carry these output variables; the [`GridShader`] must then hand back
     /// `layout.stride` floats per vertex in [`crate::Shaded::aov`].
     pub fn set_aovs(&mut self, layout: AovLayout) {
+        self.film.set_aovs(&layout);
         self.aov = layout;
+    }
+
+    /// Evaluates the pixel filter (and every display's own filter) exactly instead of through
+    /// the film's per-frame tables: the reference the tables are checked against.
+    #[doc(hidden)]
+    pub fn use_exact_filter(&mut self) {
+        self.film.use_exact_filter();
     }
 
     /// The bucket stage into memory: [`Hider::render_to`] with a sink that keeps the whole
