@@ -193,7 +193,7 @@ fn a_batch_splits_into_parts_inside_its_bound_keeping_the_order() {
         "ObjectBegin 1\nSphere 0.5 -0.5 0.5 360\nObjectEnd\n{}",
         run_of_placements(n, n, "ObjectInstance 1\n")
     ));
-    let frame = one_frame(&rib);
+    let mut frame = one_frame(&rib);
     assert_eq!(frame.primitives.len(), 1);
     let inside = |inner: illume_geom::Bound, outer: illume_geom::Bound| {
         inner.min.cmpge(outer.min).all() && inner.max.cmple(outer.max).all()
@@ -224,7 +224,10 @@ fn a_batch_splits_into_parts_inside_its_bound_keeping_the_order() {
             ((i % k) as f32 + 0.5) * c - 1.0,
             ((i / k) as f32 + 0.5) * c - 1.0,
         );
-        assert!((*got - want).length() < 1e-4, "instance {i} at {got}, want {want}");
+        assert!(
+            (*got - want).length() < 1e-4,
+            "instance {i} at {got}, want {want}"
+        );
     }
 }
 

@@ -78,6 +78,12 @@ impl<'f> Hider<'f> {
             cy0 as f32 - margin,
             cy1 as f32 + margin,
         ];
+        let frame_region = [
+            -margin,
+            opts.xres as f32 + margin,
+            -margin,
+            opts.yres as f32 + margin,
+        ];
         let mut warnings = Vec::new();
         let samples = opts.pixel_samples;
         let lens = Lens::new(opts.depth_of_field, cam)
@@ -94,6 +100,7 @@ impl<'f> Hider<'f> {
         let refiner = Refiner {
             camera: cam,
             region,
+            frame_region,
             eye_splits: opts.eye_splits,
             grid_size: opts.grid_size.max(1) as usize,
             lens,

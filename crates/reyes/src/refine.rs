@@ -142,6 +142,11 @@ pub(crate) struct Refiner<'c> {
     pub camera: &'c Camera,
     /// Region (pixels, with filter margin) outside of which pieces are culled.
     pub region: [f32; 4],
+    /// The whole frame's region (pixels, with the same margin), whatever the crop: where a
+    /// piece counts as mostly outside. It must not follow the crop window, or a tile of a
+    /// frame (`farm`'s `--crop` renders) would split and dice differently from the whole
+    /// frame and the merged tiles would not be the frame's bits.
+    pub frame_region: [f32; 4],
     pub eye_splits: u32,
     pub grid_size: usize,
     /// The thin lens when depth of field is on.
@@ -339,12 +344,12 @@ impl Refiner<'_> {
     }
 
     /// Whether less than half of a raster bound (grown by a pixel, so slivers count) lies
-    /// in the region. Why: a piece's dice rate comes from its whole projected size, so a
+    /// in the frame's region. Why: a piece's dice rate comes from its whole projected size, so a
     /// ground plane's far strip, a few pixels tall but reaching far past both sides of the
     /// frame, would dice mostly off screen (8× the micropolygons of the pixels it covers in
     /// `tests/ground_plane.rs`); split, its outside halves are culled.
     fn mostly_outside(&self, raster: &[f32; 4]) -> bool {
-        let r = &self.region;
+        let r = &self.frame_region;
         let inside = |lo: f32, hi: f32, rlo: f32, rhi: f32| (hi.min(rhi) - lo.max(rlo)).max(0.0);
         let iw = inside(raster[0], raster[1], r[0], r[1]);
         let ih = inside(raster[2], raster[3], r[2], r[3]);
@@ -445,14 +450,49 @@ impl Refiner<'_> {
         }
         let step = f64::from(attrs.shading_rate).sqrt()
             * motion_factor(blur).max(crate::lens::focus_factor(self.coc(&g.p)));
-        let rate = |l: f64| -> usize {
-            let n = (l / step).ceil().clamp(1.0, 4096.0) as usize;
+        let (min_u, min_v) = min_segments(&g);
+        let rate = |l: f64, min: usize| -> usize {
+            let n = ((l / step).ceil().clamp(1.0, 4096.0) as usize).max(min);
             if attrs.dice_binary {
                 n.next_power_of_two()
             } else {
                 n
             }
         };
-        (rate(lu) + 1, rate(lv) + 1)
+        (rate(lu, min_u) + 1, rate(lv, min_v) + 1)
     }
+}
+
+/// The fewest micropolygons per side that give a piece area at all, from its test dice
+/// (camera-space points, so a projection that lines points up does not count): a direction
+/// whose first and last iso-lines are both collapsed to points (a sphere's poles) needs two
+/// segments, and a closed direction (first and last iso-lines the same curve, a full sweep)
+/// needs three. Without this a sphere about a pixel across diced at one segment per side has
+/// every vertex of a row at one pole, or both columns on one meridian: all its micropolygons
+/// have zero area and no sample ever sees it (the 10⁶-sphere scene of issue 23 came out empty).
+fn min_segments(g: &illume_geom::Grid) -> (usize, usize) {
+    let (nu, nv) = (g.nu, g.nv);
+    let (lo, hi) = g.p.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let tol = 1e-4 * (hi - lo).length();
+    let same = |a: usize, b: usize| (g.p[a] - g.p[b]).length() <= tol;
+    let row_is_point = |j: usize| (1..nu).all(|i| same(j * nu, j * nu + i));
+    let col_is_point = |i: usize| (1..nv).all(|j| same(i, j * nu + i));
+    let u_closed = (0..nv).all(|j| same(j * nu, j * nu + nu - 1));
+    let v_closed = (0..nu).all(|i| same(i, (nv - 1) * nu + i));
+    let need = |closed: bool, ends_are_points: bool| {
+        if closed {
+            3
+        } else if ends_are_points {
+            2
+        } else {
+            1
+        }
+    };
+    (
+        need(u_closed, col_is_point(0) && col_is_point(nu - 1)),
+        need(v_closed, row_is_point(0) && row_is_point(nv - 1)),
+    )
 }
