@@ -21,8 +21,15 @@ use std::time::Instant;
 
 /// Committed crash inputs of `crate_dir/tests/fuzz_crashes` whose names start with `prefix`.
 fn regressions(crate_dir: &str, prefix: &str) -> Vec<Seed> {
-    let dir = seeds::repo().join(crate_dir).join("tests/fuzz_crashes");
-    let mut out: Vec<Seed> = std::fs::read_dir(&dir)
+    inputs_in(
+        &seeds::repo().join(crate_dir).join("tests/fuzz_crashes"),
+        prefix,
+    )
+}
+
+/// The files of `dir` whose names start with `prefix`, sorted; at least one.
+fn inputs_in(dir: &Path, prefix: &str) -> Vec<Seed> {
+    let mut out: Vec<Seed> = std::fs::read_dir(dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.expect("directory entry").path())
         .filter(|p| {
@@ -120,13 +127,12 @@ fn render_rib() {
         "Format 0".to_string(),
         b"Format 0 240 1\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\n".to_vec(),
     );
-    smoke(
-        "render_rib",
-        illume_fuzz::render_rib,
-        &seeds,
-        &[format_zero],
-        300,
-    );
+    // Crash inputs of the renderer (`fuzz/regressions/render_rib_crash_*.rib`): a torus around
+    // the eye with depth of field, whose far-off blurred boxes overflowed `i32` in
+    // `reyes::motion::buffer_pixels`.
+    let mut crashes = inputs_in(&seeds::repo().join("fuzz/regressions"), "render_rib_crash_");
+    crashes.push(format_zero);
+    smoke("render_rib", illume_fuzz::render_rib, &seeds, &crashes, 300);
 }
 
 #[test]

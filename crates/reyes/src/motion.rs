@@ -428,15 +428,19 @@ fn lens_cells_pay(mp: &MovingMicropolygon, bounds: &[StratumBound], n: usize) ->
 }
 
 /// The buffer's pixels `[x0, x1, y0, y1]` (inclusive, relative to its origin) that the
-/// raster box `b` reaches; `None` when it reaches none.
+/// raster box `b` reaches; `None` when it reaches none. In `i64`: a box far off screen (a
+/// huge circle of confusion) saturates `as i32`, and the origin subtracted from `i32::MIN`
+/// overflowed (found by the render_rib fuzzer).
 fn buffer_pixels(b: [f64; 4], out: &SampleBuffer) -> Option<[i32; 4]> {
-    let [ox, oy] = out.origin;
-    let [sw, sh] = out.size;
-    let qx0 = (b[0].floor() as i32 - ox).max(0);
-    let qx1 = (b[1].floor() as i32 - ox).min(sw as i32 - 1);
-    let qy0 = (b[2].floor() as i32 - oy).max(0);
-    let qy1 = (b[3].floor() as i32 - oy).min(sh as i32 - 1);
-    (qx0 <= qx1 && qy0 <= qy1).then_some([qx0, qx1, qy0, qy1])
+    let [ox, oy] = out.origin.map(i64::from);
+    let [sw, sh] = out.size.map(|s| s as i64);
+    let pixel = |v: f64| i64::from(v.floor() as i32);
+    let qx0 = (pixel(b[0]) - ox).max(0);
+    let qx1 = (pixel(b[1]) - ox).min(sw - 1);
+    let qy0 = (pixel(b[2]) - oy).max(0);
+    let qy1 = (pixel(b[3]) - oy).min(sh - 1);
+    // Within the buffer, so each fits an `i32`.
+    (qx0 <= qx1 && qy0 <= qy1).then(|| [qx0, qx1, qy0, qy1].map(|q| q as i32))
 }
 
 /// Buffers a grid's micropolygons reuse: the shutter cuts per stratum count (filled when
