@@ -37,3 +37,24 @@ fn slow_render_inputs_dice_a_bounded_number_of_micropolygons() {
         assert!(mp > 0 && mp < 50_000, "{name}: {mp} micropolygons");
     }
 }
+
+/// Fuzzer blow-ups of the refiner (fifth runs): a hyperboloid reaching 1e24 whose piece, still
+/// too big at the deepest split, was diced at up to 4096² micropolygons (over 2 GB; now diced
+/// to the grid size, `refine::fit_grid`), and spheres flattened by a singular `Transform`
+/// whose pieces, mostly off screen, were split for that reason at every depth although their
+/// children kept their bound (2^26 pieces; now split only when a child's bound shrinks,
+/// `refine::split_shrinks`).
+#[test]
+fn refiner_blow_ups_dice_a_bounded_number_of_micropolygons() {
+    for name in [
+        "render_rib_blowup_hyperboloid.rib",
+        "render_rib_blowup_hyperboloid_min.rib",
+        "render_rib_blowup_5ef713bf.rib",
+        "render_rib_blowup_singular_min.rib",
+    ] {
+        let mp = micropolygons(name);
+        // 2,000 to 61,000 after the fixes, at most 8×8 pixels; before, millions (or out of
+        // memory).
+        assert!(mp > 0 && mp < 200_000, "{name}: {mp} micropolygons");
+    }
+}

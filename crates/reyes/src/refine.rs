@@ -319,16 +319,25 @@ impl Refiner<'_> {
             counts.culled += 1;
             return;
         }
-        let (nu, nv) = self.dice_rates(item.prim.get(), &item.later, attrs);
+        let (mut nu, mut nv) = self.dice_rates(item.prim.get(), &item.later, attrs);
         let surface = self.corner_raster(&surface);
         let micropolygons = (nu - 1) * (nv - 1);
-        let too_big = micropolygons > self.grid_size
-            || (micropolygons > MIN_OFF_SCREEN_SPLIT && self.mostly_outside(&surface));
+        let over_size = micropolygons > self.grid_size;
+        let too_big = over_size
+            || (micropolygons > MIN_OFF_SCREEN_SPLIT
+                && self.mostly_outside(&surface)
+                && split_shrinks(&item));
         if too_big && item.depth + 1 < MAX_SPLIT_DEPTH {
             for child in item.split(None) {
                 self.refine(child, attrs, defer, out);
             }
             return;
+        }
+        if over_size {
+            // Still too big at the deepest split (a piece whose bound stops shrinking in f32,
+            // such as a surface reaching 1e24): dice it coarser to fit the grid size rather
+            // than at up to 4096² micropolygons (fuzz finding render_rib_oom_ef9010ac: gigabytes).
+            (nu, nv) = fit_grid(nu, nv, self.grid_size);
         }
         out.pieces.push(Piece {
             prim: item.prim,
@@ -495,4 +504,37 @@ fn min_segments(g: &illume_geom::Grid) -> (usize, usize) {
         need(u_closed, col_is_point(0) && col_is_point(nu - 1)),
         need(v_closed, row_is_point(0) && row_is_point(nv - 1)),
     )
+}
+
+/// Vertex counts per side scaled down alike so the grid has at most `grid_size` micropolygons
+/// (at least one per side).
+fn fit_grid(nu: usize, nv: usize, grid_size: usize) -> (usize, usize) {
+    let f = (grid_size as f64 / ((nu - 1) * (nv - 1)) as f64).sqrt();
+    let side = |n: usize| (((n - 1) as f64 * f).floor() as usize).max(1);
+    let (mut su, mut sv) = (side(nu), side(nv));
+    while su * sv > grid_size.max(1) {
+        if su >= sv {
+            su -= 1;
+        } else {
+            sv -= 1;
+        }
+    }
+    (su.max(1) + 1, sv.max(1) + 1)
+}
+
+/// Whether splitting `item` gives a child whose bound is narrower than its own along some
+/// axis by at least 1% of its largest extent. A piece mostly
+/// off screen is split so its outside part can be culled; a degenerate piece (flattened by a
+/// singular transformation) can have children with its own bound at every depth, and splitting
+/// it for that reason doubled its pieces down to the deepest split (fuzz finding
+/// `render_rib_slow_c8a56e60`: minutes for an 8×6 frame).
+fn split_shrinks(item: &Item) -> bool {
+    let own = item.prim.get().bound();
+    let own_size = own.max - own.min;
+    split_keys(&item.prim, &item.later, None)
+        .iter()
+        .any(|(child, _)| {
+            let b = child.get().bound();
+            (own_size - (b.max - b.min)).max_element() > 0.01 * own_size.max_element()
+        })
 }
