@@ -289,7 +289,10 @@ fn live_cells(region: &SampleRegion, samples: &[Composited], (rx, ry): (f32, f32
     let mut big = 0.0f32;
     let mut black = vec![true; cells];
     for (c, b) in black.iter_mut().enumerate() {
-        let (cx, cy) = ((ox + (c % w) as i32) as f32 + 0.5, (oy + (c / w) as i32) as f32 + 0.5);
+        let (cx, cy) = (
+            (ox + (c % w) as i32) as f32 + 0.5,
+            (oy + (c / w) as i32) as f32 + 0.5,
+        );
         for s in c * n_per..(c + 1) * n_per {
             let (sx, sy) = region.pos[s];
             dev = dev.max((sx - cx).abs()).max((sy - cy).abs());
