@@ -55,7 +55,20 @@ fn floor_finite(x: f32) -> f32 {
 /// every value is the same bits as hashing and fading per corner (issue 21: the noise was 28%
 /// of `dented`'s frame).
 fn gradient_noise(x: &[f32], period: Option<&[i32]>, seed: u32) -> f32 {
-    let d = x.len().min(4);
+    // The dimension as a constant, so each variant's loops unroll.
+    match x.len() {
+        0 => gradient_noise_in::<0>(x, period, seed),
+        1 => gradient_noise_in::<1>(x, period, seed),
+        2 => gradient_noise_in::<2>(x, period, seed),
+        3 => gradient_noise_in::<3>(x, period, seed),
+        _ => gradient_noise_in::<4>(x, period, seed),
+    }
+}
+
+/// [`gradient_noise`] in `D` dimensions (`x` holds at least `D` coordinates).
+#[inline(always)]
+fn gradient_noise_in<const D: usize>(x: &[f32], period: Option<&[i32]>, seed: u32) -> f32 {
+    let d = D;
     if x.iter().any(|v| !v.is_finite()) {
         return 0.0;
     }
