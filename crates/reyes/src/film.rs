@@ -293,11 +293,11 @@ fn live_cells(region: &SampleRegion, samples: &[Composited], (rx, ry): (f32, f32
             (ox + (c % w) as i32) as f32 + 0.5,
             (oy + (c / w) as i32) as f32 + 0.5,
         );
-        for s in c * n_per..(c + 1) * n_per {
-            let (sx, sy) = region.pos[s];
+        let cell = c * n_per..(c + 1) * n_per;
+        for (&(sx, sy), sample) in region.pos[cell.clone()].iter().zip(&samples[cell]) {
             dev = dev.max((sx - cx).abs()).max((sy - cy).abs());
             big = big.max(sx.abs()).max(sy.abs());
-            *b &= samples[s].rgba.iter().all(|&v| v == 0.0);
+            *b &= sample.rgba.iter().all(|&v| v == 0.0);
         }
     }
     let eps = 1.0 / 32.0 + (big + 2.0) * 8.0 * f32::EPSILON;

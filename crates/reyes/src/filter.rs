@@ -286,6 +286,7 @@ fn span(c: f32, r: f32, lo: u32, hi: u32) -> std::ops::RangeInclusive<i64> {
 }
 
 /// [`FilterWeights::splat`] for a separable kernel with factors `fx`, `fy`.
+#[allow(clippy::too_many_arguments)]
 fn splat_separable(
     f: &PixelFilter,
     [px0, px1, py0, py1]: [u32; 4],
