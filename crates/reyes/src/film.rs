@@ -132,9 +132,14 @@ impl Film {
             }
         };
         if stride == 0 {
-            self.weights.splat(rect, region, &mut scratch, |k, s, w| {
-                add_colour(&mut rgba, &mut wsum, k, s, w)
-            });
+            let live = self
+                .weights
+                .nonneg()
+                .then(|| live_cells(region, samples, self.filter.radius()));
+            self.weights
+                .splat_live(rect, region, &mut scratch, live.as_deref(), |k, s, w| {
+                    add_colour(&mut rgba, &mut wsum, k, s, w)
+                });
         } else {
             self.weights.splat(rect, region, &mut scratch, |k, s, w| {
                 add_colour(&mut rgba, &mut wsum, k, s, w);
@@ -261,6 +266,63 @@ impl Film {
             }
         }
     }
+}
+
+/// The sample cells (pixels of `region`, rows first) whose samples a splat with weights
+/// `≥ 0` must visit: those within twice the filter's reach (in whole cells) of a cell holding
+/// a sample that is not black. Every other sample is black and reaches only pixels whose
+/// samples are all black; such a pixel sums `+0.0` (a weight `≥ 0` times `±0.0`, added to
+/// `+0.0`) and develops to `+0.0` whatever its weight sum, so skipping them leaves the same
+/// bits. A pixel with some sample that is not black within reach gets all its samples, in
+/// the same order. The empty sky around a model costs no filtering.
+fn live_cells(region: &SampleRegion, samples: &[Composited], (rx, ry): (f32, f32)) -> Vec<bool> {
+    let [w, h] = region.size;
+    let n_per = region.per_pixel.max(1);
+    let cells = w * h;
+    if samples.len() < cells * n_per || region.pos.len() < cells * n_per {
+        return vec![true; cells];
+    }
+    // How far a sample's pixels can lie from its cell: its offset from the cell's centre
+    // plus the filter's reach, plus the margin `span` (filter.rs) grows by.
+    let [ox, oy] = region.origin;
+    let mut dev = 0.0f32;
+    let mut big = 0.0f32;
+    let mut black = vec![true; cells];
+    for (c, b) in black.iter_mut().enumerate() {
+        let (cx, cy) = (
+            (ox + (c % w) as i32) as f32 + 0.5,
+            (oy + (c / w) as i32) as f32 + 0.5,
+        );
+        let cell = c * n_per..(c + 1) * n_per;
+        for (&(sx, sy), sample) in region.pos[cell.clone()].iter().zip(&samples[cell]) {
+            dev = dev.max((sx - cx).abs()).max((sy - cy).abs());
+            big = big.max(sx.abs()).max(sy.abs());
+            *b &= sample.rgba.iter().all(|&v| v == 0.0);
+        }
+    }
+    let eps = 1.0 / 32.0 + (big + 2.0) * 8.0 * f32::EPSILON;
+    let reach = dev + rx.max(ry) + eps;
+    if !reach.is_finite() || reach > (w.max(h)) as f32 {
+        return vec![true; cells];
+    }
+    let r = 2 * reach as usize;
+    // Dilate the cells that are not black by `r` cells, rows then columns.
+    let mut rows = vec![false; cells];
+    for y in 0..h {
+        let line = &black[y * w..(y + 1) * w];
+        for x in 0..w {
+            rows[y * w + x] = line[x.saturating_sub(r)..(x + r + 1).min(w)]
+                .iter()
+                .any(|&b| !b);
+        }
+    }
+    let mut live = vec![false; cells];
+    for y in 0..h {
+        for x in 0..w {
+            live[y * w + x] = (y.saturating_sub(r)..(y + r + 1).min(h)).any(|v| rows[v * w + x]);
+        }
+    }
+    live
 }
 
 /// Re-develops the record floats `span` of every pixel of `rect` with a channel's own filter

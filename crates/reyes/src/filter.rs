@@ -92,6 +92,10 @@ enum Eval {
 pub(crate) struct FilterWeights {
     pub filter: PixelFilter,
     eval: Eval,
+    /// Whether every weight the splat can hand out is `≥ 0` (tabulated separable factors with
+    /// no negative entry): then a pixel whose samples are all black develops to `+0.0`
+    /// whatever its weight sum, so [`FilterWeights::splat`] may skip such samples.
+    nonneg: bool,
 }
 
 /// Reused per-bucket storage of [`FilterWeights::splat`]: one sample's nonzero column and row
@@ -106,12 +110,15 @@ impl FilterWeights {
     /// `filter` tabulated (separable kernels per factor, the radial Catmull–Rom over r²) or
     /// evaluated exactly (a program's 2-D filter table, already a table).
     pub fn new(filter: &PixelFilter) -> FilterWeights {
+        let mut nonneg = false;
         let eval = if filter.is_separable() {
             let (rx, ry) = filter.radius();
-            Eval::Table(
+            let (fx, fy) = (
                 Factor::new(rx, |d| filter.factor_x(d)),
                 Factor::new(ry, |d| filter.factor_y(d)),
-            )
+            );
+            nonneg = fx.values.iter().chain(&fy.values).all(|&v| v >= 0.0);
+            Eval::Table(fx, fy)
         } else if filter.kind == FilterKind::CatmullRom && filter.table.is_none() {
             Eval::Radial(radial_profile(filter))
         } else {
@@ -120,6 +127,7 @@ impl FilterWeights {
         FilterWeights {
             filter: filter.clone(),
             eval,
+            nonneg,
         }
     }
 
@@ -128,6 +136,7 @@ impl FilterWeights {
         FilterWeights {
             filter: filter.clone(),
             eval: Eval::Exact,
+            nonneg: false,
         }
     }
 
@@ -163,20 +172,48 @@ impl FilterWeights {
         scratch: &mut SplatScratch,
         add: impl FnMut(usize, usize, f32),
     ) {
+        self.splat_live(rect, region, scratch, None, add)
+    }
+
+    /// Whether every weight is `≥ 0`, so samples may be skipped as [`Self::splat_live`] says.
+    pub fn nonneg(&self) -> bool {
+        self.nonneg
+    }
+
+    /// [`Self::splat`] over the sample cells (pixels of `region`) `live` marks, all of them
+    /// for `None`. A tabulated separable kernel visits only the live cells' samples (the
+    /// gathers ignore `live`); the caller marks dead only cells whose skipped weights
+    /// cannot change what it develops (black samples around black pixels, [`Self::nonneg`]).
+    pub fn splat_live(
+        &self,
+        rect: [u32; 4],
+        region: &crate::film::SampleRegion,
+        scratch: &mut SplatScratch,
+        live: Option<&[bool]>,
+        add: impl FnMut(usize, usize, f32),
+    ) {
         let [px0, px1, py0, py1] = rect;
         if px1 <= px0 || py1 <= py0 {
             return;
         }
         let f = &self.filter;
         match &self.eval {
-            Eval::Table(fx, fy) => {
-                splat_separable(f, rect, region, scratch, |d| fx.at(d), |d| fy.at(d), add)
-            }
+            Eval::Table(fx, fy) => splat_separable(
+                f,
+                rect,
+                region,
+                scratch,
+                live,
+                |d| fx.at(d),
+                |d| fy.at(d),
+                add,
+            ),
             Eval::Exact if f.is_separable() => splat_separable(
                 f,
                 rect,
                 region,
                 scratch,
+                None,
                 |d| f.factor_x(d),
                 |d| f.factor_y(d),
                 add,
@@ -249,11 +286,13 @@ fn span(c: f32, r: f32, lo: u32, hi: u32) -> std::ops::RangeInclusive<i64> {
 }
 
 /// [`FilterWeights::splat`] for a separable kernel with factors `fx`, `fy`.
+#[allow(clippy::too_many_arguments)]
 fn splat_separable(
     f: &PixelFilter,
     [px0, px1, py0, py1]: [u32; 4],
     region: &crate::film::SampleRegion,
     scratch: &mut SplatScratch,
+    live: Option<&[bool]>,
     fx: impl Fn(f32) -> f32,
     fy: impl Fn(f32) -> f32,
     mut add: impl FnMut(usize, usize, f32),
@@ -261,29 +300,36 @@ fn splat_separable(
     let bw = (px1 - px0) as usize;
     let (rx, ry) = f.radius();
     let SplatScratch { xs, ys } = scratch;
-    for (s, &(sx, sy)) in region.pos.iter().enumerate() {
-        xs.clear();
-        for x in span(sx, rx, px0, px1) {
-            let w = fx(sx - (x as f32 + 0.5));
-            if w != 0.0 {
-                xs.push(((x - px0 as i64) as usize, w));
-            }
-        }
-        if xs.is_empty() {
+    let n_per = region.per_pixel.max(1);
+    for (c, cell) in region.pos.chunks(n_per).enumerate() {
+        if live.is_some_and(|l| !l.get(c).copied().unwrap_or(true)) {
             continue;
         }
-        ys.clear();
-        for y in span(sy, ry, py0, py1) {
-            let w = fy(sy - (y as f32 + 0.5));
-            if w != 0.0 {
-                ys.push(((y - py0 as i64) as usize * bw, w));
-            }
-        }
-        for &(row, wy) in ys.iter() {
-            for &(col, wx) in xs.iter() {
-                let w = wx * wy;
+        for (j, &(sx, sy)) in cell.iter().enumerate() {
+            let s = c * n_per + j;
+            xs.clear();
+            for x in span(sx, rx, px0, px1) {
+                let w = fx(sx - (x as f32 + 0.5));
                 if w != 0.0 {
-                    add(row + col, s, w);
+                    xs.push(((x - px0 as i64) as usize, w));
+                }
+            }
+            if xs.is_empty() {
+                continue;
+            }
+            ys.clear();
+            for y in span(sy, ry, py0, py1) {
+                let w = fy(sy - (y as f32 + 0.5));
+                if w != 0.0 {
+                    ys.push(((y - py0 as i64) as usize * bw, w));
+                }
+            }
+            for &(row, wy) in ys.iter() {
+                for &(col, wx) in xs.iter() {
+                    let w = wx * wy;
+                    if w != 0.0 {
+                        add(row + col, s, w);
+                    }
                 }
             }
         }

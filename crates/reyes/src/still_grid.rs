@@ -177,6 +177,31 @@ impl SampleBuffer {
             return 0;
         }
         let edges = TriangleEdges::new(t);
+        // A triangle without reaching edges holds only points inside its vertices' bound, and
+        // its edge tests decide on the exact signs (f32 positions in f64), so a sample beyond
+        // that bound (with a margin far above the tests' rounding) fails them: a few compares
+        // instead of three edge values for most samples of the pixels around a micropolygon.
+        // A reaching edge reaches past the bound (at a sharp corner, past `grow` too): no bound.
+        let tight = if grow == 0.0 {
+            const MARGIN: f64 = 1e-4;
+            let [x0, x1, y0, y1] = t.v.iter().fold(
+                [
+                    f64::INFINITY,
+                    f64::NEG_INFINITY,
+                    f64::INFINITY,
+                    f64::NEG_INFINITY,
+                ],
+                |b, p| [b[0].min(p.x), b[1].max(p.x), b[2].min(p.y), b[3].max(p.y)],
+            );
+            [x0 - MARGIN, x1 + MARGIN, y0 - MARGIN, y1 + MARGIN]
+        } else {
+            [
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+            ]
+        };
         let inv_z = t.v.map(|p| 1.0 / p.z);
         let [near, far] = self.near_far;
         let n_per = self.n_per;
@@ -185,6 +210,9 @@ impl SampleBuffer {
             let row = qy * sw as usize;
             for s in (row + qx0 as usize) * n_per..(row + qx1 as usize + 1) * n_per {
                 let (x, y) = (f64::from(self.pos[s].0), f64::from(self.pos[s].1));
+                if x < tight[0] || x > tight[1] || y < tight[2] || y > tight[3] {
+                    continue;
+                }
                 let Some(w) = edges.covers(x, y) else {
                     continue;
                 };
