@@ -300,12 +300,9 @@ fn grid_motion(
                         .collect(),
                 );
             }
-            Some(GridMotion { times, keys })
+            Some(GridMotion::new(times, keys))
         }
-        _ if lens => Some(GridMotion {
-            times: vec![0.0],
-            keys: vec![displaced.to_vec()],
-        }),
+        _ if lens => Some(GridMotion::new(vec![0.0], vec![displaced.to_vec()])),
         _ => None,
     }
 }

@@ -175,6 +175,7 @@ impl<'f> Hider<'f> {
             jitter: opts.jitter,
             // Times and lens positions, only when something in the frame moves or a lens blurs.
             blur: lens.is_some() || frame_moves(frame),
+            lens: lens.is_some(),
             shutter: opts.shutter,
             near_far: [cam.near as f32, cam.far as f32],
             perspective: cam.is_perspective(),

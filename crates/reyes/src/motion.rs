@@ -24,14 +24,100 @@ use crate::time_strata::{stratum_count, stratum_cuts, stratum_samples, time_slac
 use glam::{DVec3, Vec3};
 use illume_ri::motion::segment;
 use illume_ri::Camera;
+use std::sync::OnceLock;
 
 /// The camera-space positions of a grid at each motion key (one key: depth of field only).
 pub(crate) struct GridMotion {
     pub times: Vec<f64>,
     pub keys: Vec<Vec<Vec3>>,
+    /// Its micropolygons' bucket-independent bounds, set up by the first bucket that samples
+    /// it and shared by the others (a blurred grid spans many buckets).
+    setup: OnceLock<GridSetup>,
+}
+
+/// What sampling a moving micropolygon needs that no bucket changes: its raster box and
+/// depth range over every key, its time strata and their padding, and where its strata's
+/// paths are in [`GridSetup`] (none for one stratum).
+struct MicropolygonSetup {
+    key_box: [f64; 4],
+    z: [f64; 2],
+    strata: usize,
+    /// `MovingMicropolygon::pad`.
+    pad: f64,
+    paths: u32,
+}
+
+/// [`MicropolygonSetup`] per micropolygon (`None`: back-facing, or a position that does not
+/// project, so it is never sampled); every micropolygon's strata's paths ([`strata_paths`])
+/// in one vector; the cuts per stratum count. The corners at the cuts are projected again
+/// by each bucket, for only the strata it reaches: keeping them would triple the memory.
+struct GridSetup {
+    mps: Vec<Option<MicropolygonSetup>>,
+    paths: Vec<StratumPath>,
+    cuts: Vec<Vec<f64>>,
+}
+
+impl GridSetup {
+    /// Stratum `k`'s bound of micropolygon `s` (of vertices `quad`); `ends` holds its corners
+    /// at the stratum's cuts when a previous stratum computed them. `None` when a corner does
+    /// not project (never, once `strata_paths` projected them).
+    #[allow(clippy::too_many_arguments)]
+    fn bound(
+        &self,
+        m: &GridMotion,
+        quad: &[usize; 4],
+        s: &MicropolygonSetup,
+        k: usize,
+        shutter: [f64; 2],
+        persp: bool,
+        project: &impl Fn(DVec3) -> Option<DVec3>,
+        ends: &mut Option<(usize, [DVec3; 4])>,
+    ) -> Option<StratumBound> {
+        if s.strata == 1 {
+            return Some(StratumBound {
+                path: s.key_box,
+                t0: shutter[0],
+                v: [0.0; 2],
+                still: s.key_box,
+                chord: None,
+            });
+        }
+        let cuts = &self.cuts[s.strata];
+        let start = match *ends {
+            Some((c, v)) if c == k => v,
+            _ => cut_corners(m, quad, cuts[k], project)?,
+        };
+        let end = cut_corners(m, quad, cuts[k + 1], project)?;
+        *ends = Some((k + 1, end));
+        let p = self.paths[s.paths as usize + k];
+        Some(stratum_bound(
+            p,
+            &start,
+            &end,
+            [cuts[k], cuts[k + 1]],
+            persp,
+        ))
+    }
+
+    /// Stratum `k`'s path box of micropolygon `s`.
+    fn path(&self, s: &MicropolygonSetup, k: usize) -> [f64; 4] {
+        if s.strata == 1 {
+            s.key_box
+        } else {
+            self.paths[s.paths as usize + k].path
+        }
+    }
 }
 
 impl GridMotion {
+    pub fn new(times: Vec<f64>, keys: Vec<Vec<Vec3>>) -> GridMotion {
+        GridMotion {
+            times,
+            keys,
+            setup: OnceLock::new(),
+        }
+    }
+
     fn at(&self, v: usize, (k, w): (usize, f64)) -> DVec3 {
         let a = self.keys[k][v].as_dvec3();
         if w == 0.0 || self.keys.len() == 1 {
@@ -93,7 +179,9 @@ impl Chord {
     }
 }
 
-/// The per-stratum bounds of micropolygon `quad` between consecutive `cuts` (times).
+/// The per-stratum bounds of micropolygon `quad` between consecutive `cuts` (times), in two
+/// steps: [`strata_paths`] (each cut's corners and each stratum's `path`, set up once per
+/// grid) and [`stratum_bound`] (the rest, only for the strata a bucket reaches).
 ///
 /// A vertex moves linearly in camera space between keys, hence along a straight raster line
 /// (a projective map keeps lines), so the box of its positions at a stratum's two cuts and at
@@ -108,88 +196,121 @@ impl Chord {
 /// a sample costs two multiply-adds and compares to reject instead of a full test. Each
 /// position is projected once and shared by the two strata it ends. `None` when a position
 /// does not project.
-fn strata_bounds(
+fn strata_paths(
     m: &GridMotion,
-    persp: bool,
     quad: &[usize; 4],
     cuts: &[f64],
     project: &impl Fn(DVec3) -> Option<DVec3>,
-    bounds: &mut Vec<StratumBound>,
+    paths: &mut Vec<StratumPath>,
 ) -> Option<()> {
     let at = |p: DVec3| project(p).filter(|q| q.is_finite());
-    let corners = |t: f64| -> Option<[DVec3; 4]> {
-        let seg = segment(&m.times, t);
-        let mut v = [DVec3::ZERO; 4];
-        for (q, &k) in v.iter_mut().zip(quad) {
-            *q = at(m.at(k, seg))?;
-        }
-        Some(v)
-    };
-    let mut start = corners(*cuts.first()?)?;
-    bounds.clear();
+    let mut start = cut_corners(m, quad, *cuts.first()?, project)?;
+    paths.clear();
     for w in cuts.windows(2) {
-        let end = corners(w[1])?;
+        let end = cut_corners(m, quad, w[1], project)?;
         let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-        let add = |b: &mut [f64; 4], lo: DVec3, hi: DVec3| {
-            *b = [
-                b[0].min(lo.x),
-                b[1].max(hi.x),
-                b[2].min(lo.y),
-                b[3].max(hi.y),
-            ];
-        };
-        start.iter().chain(&end).for_each(|&q| add(&mut b, q, q));
+        start
+            .iter()
+            .chain(&end)
+            .for_each(|&q| add_box(&mut b, q, q));
         let mut inner_key = false;
         for (key, &t) in m.keys.iter().zip(&m.times) {
             if t > w[0] && t < w[1] {
                 inner_key = true;
                 for &k in quad {
                     let q = at(key[k].as_dvec3())?;
-                    add(&mut b, q, q);
+                    add_box(&mut b, q, q);
                 }
             }
         }
-        let dt = w[1] - w[0];
-        let mut bound = StratumBound {
-            path: b,
-            t0: w[0],
-            v: [0.0; 2],
-            still: b,
-            chord: None,
-        };
-        if !inner_key && dt > 0.0 {
-            let mean = start.iter().zip(&end).map(|(a, e)| *e - *a).sum::<DVec3>() * 0.25;
-            let mut s = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-            for (a, e) in start.iter().zip(&end) {
-                let d = *e - *a;
-                let q = if persp {
-                    0.25 * (e.z - a.z).abs() / a.z.min(e.z)
-                } else {
-                    0.0
-                };
-                let r = d - mean;
-                let grow = DVec3::new(d.x.abs(), d.y.abs(), 0.0) * q;
-                add(
-                    &mut s,
-                    *a + r.min(DVec3::ZERO) - grow,
-                    *a + r.max(DVec3::ZERO) + grow,
-                );
-            }
-            if s.iter().all(|x| x.is_finite()) {
-                bound.v = [mean.x / dt, mean.y / dt];
-                bound.still = s;
-                bound.chord = Some(Chord {
-                    a: start,
-                    d: [0, 1, 2, 3].map(|k| end[k] - start[k]),
-                    inv_dt: 1.0 / dt,
-                    persp,
-                });
-            }
-        }
-        bounds.push(bound);
+        paths.push(StratumPath { path: b, inner_key });
         start = end;
     }
     Some(())
+}
+
+/// The raster corners of micropolygon `quad` at time `t` (`None` when one does not project).
+#[inline]
+fn cut_corners(
+    m: &GridMotion,
+    quad: &[usize; 4],
+    t: f64,
+    project: &impl Fn(DVec3) -> Option<DVec3>,
+) -> Option<[DVec3; 4]> {
+    let seg = segment(&m.times, t);
+    let mut v = [DVec3::ZERO; 4];
+    for (q, &k) in v.iter_mut().zip(quad) {
+        *q = project(m.at(k, seg)).filter(|q| q.is_finite())?;
+    }
+    Some(v)
+}
+
+/// Grows raster box `b` by the box spanned by `lo` and `hi`.
+#[inline]
+fn add_box(b: &mut [f64; 4], lo: DVec3, hi: DVec3) {
+    *b = [
+        b[0].min(lo.x),
+        b[1].max(hi.x),
+        b[2].min(lo.y),
+        b[3].max(hi.y),
+    ];
+}
+
+/// A stratum's path box (`StratumBound::path`) and whether a key lies strictly inside it.
+#[derive(Clone, Copy, Debug)]
+struct StratumPath {
+    path: [f64; 4],
+    inner_key: bool,
+}
+
+/// The bound of stratum `[t0, t1]` with path `p`, its corners at `t0` (`start`) and `t1`
+/// (`end`): the `still` box and chord when no key lies inside it (see [`strata_paths`]).
+fn stratum_bound(
+    p: StratumPath,
+    start: &[DVec3; 4],
+    end: &[DVec3; 4],
+    [t0, t1]: [f64; 2],
+    persp: bool,
+) -> StratumBound {
+    let b = p.path;
+    let dt = t1 - t0;
+    let mut bound = StratumBound {
+        path: b,
+        t0,
+        v: [0.0; 2],
+        still: b,
+        chord: None,
+    };
+    if !p.inner_key && dt > 0.0 {
+        let mean = start.iter().zip(end).map(|(a, e)| *e - *a).sum::<DVec3>() * 0.25;
+        let mut s = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
+        for (a, e) in start.iter().zip(end) {
+            let d = *e - *a;
+            let q = if persp {
+                0.25 * (e.z - a.z).abs() / a.z.min(e.z)
+            } else {
+                0.0
+            };
+            let r = d - mean;
+            let grow = DVec3::new(d.x.abs(), d.y.abs(), 0.0) * q;
+            add_box(
+                &mut s,
+                *a + r.min(DVec3::ZERO) - grow,
+                *a + r.max(DVec3::ZERO) + grow,
+            );
+        }
+        if s.iter().all(|x| x.is_finite()) {
+            bound.v = [mean.x / dt, mean.y / dt];
+            bound.still = s;
+            bound.chord = Some(Chord {
+                a: *start,
+                d: [0, 1, 2, 3].map(|k| end[k] - start[k]),
+                inv_dt: 1.0 / dt,
+                persp,
+            });
+        }
+    }
+    bound
 }
 
 /// A bound on how far (raster pixels, either axis) a vertex of a micropolygon with raster box
@@ -224,10 +345,15 @@ fn sweep(
     [x0, x1, y0, y1]: [f64; 4],
     project: &impl Fn(DVec3) -> Option<DVec3>,
 ) -> f64 {
-    let v: Vec<DVec3> = quad
-        .iter()
-        .filter_map(|&k| project(m.keys[0][k].as_dvec3()))
-        .collect();
+    let mut v = [DVec3::ZERO; 4];
+    let mut len = 0;
+    for &k in quad {
+        if let Some(q) = project(m.keys[0][k].as_dvec3()) {
+            v[len] = q;
+            len += 1;
+        }
+    }
+    let v = &v[..len];
     let extent = |g: fn(&DVec3) -> f64| {
         let xs = v.iter().map(g);
         xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
@@ -253,36 +379,91 @@ pub(crate) fn sample_moving_grid(
         }
         cam.raster_from_camera(p)
     };
+    let setup = m
+        .setup
+        .get_or_init(|| grid_setup(g, m, &project, persp, out));
     let mut hits = 0;
-    let mut scratch = Scratch::default();
+    let mut bounds = Vec::new();
     for j in 0..g.nv - 1 {
         for i in 0..g.nu - 1 {
-            let s = &mut scratch;
-            hits += sample_moving_micropolygon(g, m, id, [i, j], &project, persp, lens, out, s);
+            let k = j * (g.nu - 1) + i;
+            let Some(s) = &setup.mps[k] else { continue };
+            let mp = [i, j];
+            hits += sample_moving_micropolygon(
+                g,
+                m,
+                id,
+                mp,
+                setup,
+                s,
+                &project,
+                persp,
+                lens,
+                out,
+                &mut bounds,
+            );
         }
     }
     hits
 }
 
-/// Samples micropolygon `(i, j)` of a moving grid: over each time stratum of the shutter
-/// (`time_strata.rs`), the samples of that stratum inside the micropolygon's box over the
-/// stratum's times (grown by its circle of confusion); returns the samples hit.
-#[allow(clippy::too_many_arguments)]
-fn sample_moving_micropolygon(
+/// Every micropolygon's [`MicropolygonSetup`]: its raster box and depths over every key, its
+/// time strata (`time_strata.rs`), its corners at their cuts and their paths, as no bucket
+/// changes them.
+fn grid_setup(
     g: &ShadedGrid,
     m: &GridMotion,
-    id: usize,
+    project: &impl Fn(DVec3) -> Option<DVec3>,
+    persp: bool,
+    out: &SampleBuffer,
+) -> GridSetup {
+    let mut setup = GridSetup {
+        mps: Vec::with_capacity((g.nu - 1) * (g.nv - 1)),
+        paths: Vec::new(),
+        cuts: Vec::new(),
+    };
+    let mut paths = Vec::new();
+    for j in 0..g.nv - 1 {
+        for i in 0..g.nu - 1 {
+            let s = micropolygon_setup(
+                g,
+                m,
+                [i, j],
+                project,
+                persp,
+                out,
+                &mut setup.cuts,
+                &mut paths,
+            );
+            setup.mps.push(s.map(|mut s| {
+                s.paths = setup.paths.len() as u32;
+                if s.strata > 1 {
+                    setup.paths.extend_from_slice(&paths);
+                }
+                s
+            }));
+        }
+    }
+    setup.paths.shrink_to_fit();
+    setup
+}
+
+/// Micropolygon `(i, j)`'s [`MicropolygonSetup`], its strata's paths left in `paths` when it
+/// has more than one stratum; `None` when it is never sampled.
+#[allow(clippy::too_many_arguments)]
+fn micropolygon_setup(
+    g: &ShadedGrid,
+    m: &GridMotion,
     [i, j]: [usize; 2],
     project: &impl Fn(DVec3) -> Option<DVec3>,
     persp: bool,
-    lens: Option<&Lens>,
-    out: &mut SampleBuffer,
-    scratch: &mut Scratch,
-) -> u64 {
+    out: &SampleBuffer,
+    cuts: &mut Vec<Vec<f64>>,
+    paths: &mut Vec<StratumPath>,
+) -> Option<MicropolygonSetup> {
     let nu = g.nu;
-    let mp = j * (nu - 1) + i;
-    if g.backface[mp] {
-        return 0;
+    if g.backface[j * (nu - 1) + i] {
+        return None;
     }
     let a = j * nu + i;
     let quad = [a, a + 1, a + nu + 1, a + nu];
@@ -291,21 +472,75 @@ fn sample_moving_micropolygon(
     let (mut z0, mut z1) = (f64::MAX, f64::MIN);
     for key in &m.keys {
         for &v in &quad {
-            let Some(q) = project(key[v].as_dvec3()).filter(|q| q.is_finite()) else {
-                return 0;
-            };
+            let q = project(key[v].as_dvec3()).filter(|q| q.is_finite())?;
             (x0, x1, y0, y1) = (x0.min(q.x), x1.max(q.x), y0.min(q.y), y1.max(q.y));
             (z0, z1) = (z0.min(q.z), z1.max(q.z));
         }
     }
     let key_box = [x0, x1, y0, y1];
+    let n = out.n_per;
+    let shutter = out.shutter.map(f64::from);
+    let mut strata = if m.keys.len() > 1 && shutter[1] > shutter[0] {
+        stratum_count(sweep(m, &quad, key_box, project), n)
+    } else {
+        1
+    };
+    // A sample time may round past its stratum's cuts by `time_slack`: the boxes grow by the
+    // motion over that time (a tiny fraction of a pixel), or are not cut when it is unbounded.
+    let drift = drift(m, key_box, [z0, z1], persp, time_slack(shutter));
+    if drift.is_nan() || drift >= 0.25 {
+        strata = 1;
+    }
+    let mut pad = 0.0;
+    if strata > 1 {
+        pad = drift;
+        if cuts.len() <= strata {
+            cuts.resize(strata + 1, Vec::new());
+        }
+        if cuts[strata].is_empty() {
+            cuts[strata] = stratum_cuts(strata, n, shutter);
+        }
+        strata_paths(m, &quad, &cuts[strata], project, paths)?;
+    }
+    Some(MicropolygonSetup {
+        key_box,
+        z: [z0, z1],
+        strata,
+        pad,
+        paths: 0,
+    })
+}
+
+/// Samples micropolygon `(i, j)` of a moving grid, set up as `s`: over each time stratum of
+/// the shutter (`time_strata.rs`) whose path reaches the buffer, the samples of that stratum
+/// inside the micropolygon's box over the stratum's times (grown by its circle of
+/// confusion); returns the samples hit. `bounds` is scratch.
+#[allow(clippy::too_many_arguments)]
+fn sample_moving_micropolygon(
+    g: &ShadedGrid,
+    m: &GridMotion,
+    id: usize,
+    [i, j]: [usize; 2],
+    setup: &GridSetup,
+    s: &MicropolygonSetup,
+    project: &impl Fn(DVec3) -> Option<DVec3>,
+    persp: bool,
+    lens: Option<&Lens>,
+    out: &mut SampleBuffer,
+    bounds: &mut Vec<StratumBound>,
+) -> u64 {
+    let nu = g.nu;
+    let mp = j * (nu - 1) + i;
+    let a = j * nu + i;
+    let quad = [a, a + 1, a + nu + 1, a + nu];
+    let [z0, z1] = s.z;
     let mut mp = MovingMicropolygon {
         g,
         m,
         quad,
         reach: g.border_reach(i, j),
         order: ((id as u64) << 32) | mp as u64,
-        z: [z0, z1],
+        z: s.z,
         persp,
         lens,
         lens_cells: lens.is_some_and(|l| {
@@ -327,53 +562,47 @@ fn sample_moving_micropolygon(
         mp.fixed = Some((v, k));
     }
     // Most micropolygons of a grid that several buckets share miss this one.
-    if mp.pixels(key_box, out).is_none() {
+    if mp.pixels(s.key_box, out).is_none() {
         return 0;
     }
+    mp.pad = s.pad;
     let n = out.n_per;
     let shutter = out.shutter.map(f64::from);
-    let mut strata = if m.keys.len() > 1 && shutter[1] > shutter[0] {
-        stratum_count(sweep(m, &quad, key_box, project), n)
-    } else {
-        1
-    };
-    // A sample time may round past its stratum's cuts by `time_slack`: the boxes grow by the
-    // motion over that time (a tiny fraction of a pixel), or are not cut when it is unbounded.
-    let drift = drift(m, key_box, [z0, z1], persp, time_slack(shutter));
-    if drift.is_nan() || drift >= 0.25 {
-        strata = 1;
-    }
-    let bounds = &mut scratch.bounds;
-    if strata == 1 {
-        bounds.clear();
-        bounds.push(StratumBound {
-            path: key_box,
-            t0: shutter[0],
-            v: [0.0; 2],
-            still: key_box,
-            chord: None,
-        });
-    } else {
-        mp.pad = drift;
-        let cuts = &mut scratch.cuts;
-        if cuts.len() <= strata {
-            cuts.resize(strata + 1, Vec::new());
-        }
-        if cuts[strata].is_empty() {
-            cuts[strata] = stratum_cuts(strata, n, shutter);
-        }
-        if strata_bounds(m, persp, &quad, &cuts[strata], project, bounds).is_none() {
-            return 0;
-        }
-    }
-    if let Some(lens) = lens.filter(|_| mp.lens_cells && lens_cells_pay(&mp, bounds, n)) {
-        return mp
-            .sample_lens_cells(lens, bounds, project, out)
-            .unwrap_or(0);
-    }
     let mut hits = 0;
-    for (k, &b) in bounds.iter().enumerate() {
-        match mp.sample_stratum(b, stratum_samples(k, strata, n), project, out) {
+    if let Some(lens) = lens {
+        bounds.clear();
+        let mut ends = None;
+        for k in 0..s.strata {
+            let Some(b) = setup.bound(m, &quad, s, k, shutter, persp, project, &mut ends) else {
+                return 0;
+            };
+            bounds.push(b);
+        }
+        if mp.lens_cells && lens_cells_pay(&mp, bounds, n) {
+            return mp
+                .sample_lens_cells(lens, bounds, project, out)
+                .unwrap_or(0);
+        }
+        for (k, &b) in bounds.iter().enumerate() {
+            match mp.sample_stratum(b, stratum_samples(k, s.strata, n), project, out) {
+                Some(h) => hits += h,
+                None => return hits,
+            }
+        }
+        return hits;
+    }
+    // Without a lens only the strata whose paths reach the buffer are bounded further (a
+    // stratum that reaches none tests no sample).
+    let mut ends = None;
+    for k in 0..s.strata {
+        let run = stratum_samples(k, s.strata, n);
+        if run.is_empty() || mp.pixels(setup.path(s, k), out).is_none() {
+            continue;
+        }
+        let Some(b) = setup.bound(m, &quad, s, k, shutter, persp, project, &mut ends) else {
+            return hits;
+        };
+        match mp.sample_stratum(b, run, project, out) {
             Some(h) => hits += h,
             None => return hits,
         }
@@ -441,14 +670,6 @@ fn buffer_pixels(b: [f64; 4], out: &SampleBuffer) -> Option<[i32; 4]> {
     let qy1 = (pixel(b[3]) - oy).min(sh - 1);
     // Within the buffer, so each fits an `i32`.
     (qx0 <= qx1 && qy0 <= qy1).then(|| [qx0, qx1, qy0, qy1].map(|q| q as i32))
-}
-
-/// Buffers a grid's micropolygons reuse: the shutter cuts per stratum count (filled when
-/// first needed) and one micropolygon's stratum bounds.
-#[derive(Default)]
-struct Scratch {
-    cuts: Vec<Vec<f64>>,
-    bounds: Vec<StratumBound>,
 }
 
 /// One moving micropolygon and what testing a sample against it needs.

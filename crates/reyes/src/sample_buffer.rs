@@ -24,6 +24,8 @@ pub(crate) struct SampleSetup {
     pub jitter: bool,
     /// Whether times and lens positions are needed (something moves or a lens blurs).
     pub blur: bool,
+    /// Whether a lens blurs (lens positions are needed).
+    pub lens: bool,
     pub shutter: [f32; 2],
     /// Camera clipping planes.
     pub near_far: [f32; 2],
@@ -117,7 +119,8 @@ impl SampleBuffer {
                 for px in sx0..sx1 {
                     let (frame, jitter) = (set.frame, set.jitter);
                     time_lens.clear();
-                    sample_time_lens(px, py, spp, frame, jitter, set.shutter, &mut time_lens);
+                    let (shutter, lens) = (set.shutter, set.lens);
+                    sample_time_lens(px, py, spp, frame, jitter, shutter, lens, &mut time_lens);
                     let first = timed.len();
                     push_time_ordered(&pos[first..first + n_per], &time_lens, first, &mut timed);
                 }

@@ -117,7 +117,9 @@ pub fn lens_cell(l: u32, samples: [u32; 2]) -> [f32; 4] {
 /// the x/y strata and the same for any bucket or thread count. The lens position follows the
 /// time stratum shifted per pixel: stratum `f` looks through lens cell [`lens_strata`]`[j]`,
 /// `j = (f − r) mod n`, jittered inside it, so the lens positions are stratified over the lens
-/// grid too.
+/// grid too. Without a lens (`lens` false) every lens position is the disk's centre, as no
+/// one looks at it (the times, strata and lens indices are the same).
+#[allow(clippy::too_many_arguments)]
 pub fn sample_time_lens(
     px: i32,
     py: i32,
@@ -125,6 +127,7 @@ pub fn sample_time_lens(
     frame: i32,
     jitter: bool,
     shutter: [f32; 2],
+    lens: bool,
     out: &mut Vec<TimeLens>,
 ) {
     let n = (samples[0] * samples[1]) as usize;
@@ -138,6 +141,21 @@ pub fn sample_time_lens(
     let [open, close] = shutter;
     with_lens_strata(samples, frame, |lens_of| {
         for (s, &f) in time_perm.iter().enumerate() {
+            let j = (f + n as u32 - shift) % n as u32;
+            if !lens {
+                let jt = if jitter {
+                    unit(hash(hash(pixel ^ hash(s as u32 ^ 0x3243_f6a8))))
+                } else {
+                    0.5
+                };
+                out.push(TimeLens {
+                    t: open + (close - open) * ((f as f32 + jt) / n as f32).min(1.0),
+                    lens: (0.0, 0.0),
+                    stratum: f,
+                    lens_index: j,
+                });
+                continue;
+            }
             let (jt, ju, jv) = if jitter {
                 let h = hash(pixel ^ hash(s as u32 ^ 0x3243_f6a8));
                 (
@@ -149,7 +167,6 @@ pub fn sample_time_lens(
                 (0.5, 0.5, 0.5)
             };
             let t = open + (close - open) * ((f as f32 + jt) / n as f32).min(1.0);
-            let j = (f + n as u32 - shift) % n as u32;
             let l = lens_of[j as usize];
             let (li, lj) = (l % samples[0], l / samples[0]);
             let lens = crate::lens::concentric_disk(
@@ -184,7 +201,7 @@ mod tests {
     #[test]
     fn times_fill_every_stratum_once() {
         let mut out = Vec::new();
-        sample_time_lens(5, -2, [4, 3], 7, true, [1.0, 3.0], &mut out);
+        sample_time_lens(5, -2, [4, 3], 7, true, [1.0, 3.0], true, &mut out);
         let mut strata: Vec<usize> = out
             .iter()
             .map(|tl| ((tl.t - 1.0) / 2.0 * 12.0).floor() as usize)
@@ -200,10 +217,10 @@ mod tests {
             .all(|tl| tl.lens.0.powi(2) + tl.lens.1.powi(2) <= 1.0 + 1e-5));
         // The permutation differs between pixels (decorrelated), and repeats for the same one.
         let mut again = Vec::new();
-        sample_time_lens(5, -2, [4, 3], 7, true, [1.0, 3.0], &mut again);
+        sample_time_lens(5, -2, [4, 3], 7, true, [1.0, 3.0], true, &mut again);
         assert_eq!(out, again);
         let mut other = Vec::new();
-        sample_time_lens(6, -2, [4, 3], 7, true, [1.0, 3.0], &mut other);
+        sample_time_lens(6, -2, [4, 3], 7, true, [1.0, 3.0], true, &mut other);
         assert_ne!(out, other);
     }
 
@@ -218,7 +235,7 @@ mod tests {
         let mut shifts = std::collections::BTreeSet::new();
         for (px, py) in [(0, 0), (5, -2), (-40, 17), (300, 9), (1, 1), (2, 1)] {
             let mut out = Vec::new();
-            sample_time_lens(px, py, spp, 7, true, [0.0, 1.0], &mut out);
+            sample_time_lens(px, py, spp, 7, true, [0.0, 1.0], true, &mut out);
             let mut seen = [false; 12];
             for tl in &out {
                 let l = cells[tl.lens_index as usize];

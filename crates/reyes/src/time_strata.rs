@@ -112,7 +112,7 @@ mod tests {
                 for jitter in [true, false] {
                     for (px, py) in [(0, 0), (17, -4), (-300, 999)] {
                         let mut tl = Vec::new();
-                        sample_time_lens(px, py, spp, 3, jitter, shutter, &mut tl);
+                        sample_time_lens(px, py, spp, 3, jitter, shutter, true, &mut tl);
                         let pos = vec![(0.0, 0.0); n];
                         let mut timed = Vec::new();
                         push_time_ordered(&pos, &tl, 0, &mut timed);
