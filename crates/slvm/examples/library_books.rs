@@ -12,11 +12,12 @@
 //!
 //! Where: `$ILLUME_SHADER_BOOKS`, a checkout of that repository or its git directory (read with
 //! `git archive`, never written); without it, the fetched mirror at [`MIRROR`]. When neither
-//! exists the test says so and returns: it is an opt-in check (CI carries no copy). When the
-//! variable is set but holds no collection, the test fails.
+//! exists it says so and exits with status 2: an opt-in check, an example rather than a test,
+//! so that no test passes without its data (CI carries no copy). When the variable is set but
+//! holds no collection, it fails.
 //!
-//! Run: `cargo build -p render && ILLUME_SHADER_BOOKS=… cargo test -p illume-slvm --test
-//! library_books -- --nocapture` (the table of counts goes to stderr).
+//! Run: `cargo build -p render && ILLUME_SHADER_BOOKS=… cargo run -p illume-slvm --example
+//! library_books` (the table of counts goes to stderr).
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -227,13 +228,16 @@ fn wait_at_most(
     }
 }
 
-#[test]
-fn the_books_shaders_compile_and_render() {
+/// Compiles and renders every shader of the two books; exits non-zero (a panic) on any
+/// failure, and with status 2 when the collections or the `render` binary are not here.
+fn main() {
     let scratch = std::env::temp_dir().join(format!("illume-books-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&scratch);
-    let Some(root) = books(&scratch) else { return };
+    let Some(root) = books(&scratch) else {
+        std::process::exit(2)
+    };
     let Some(render) = illume_testenv::require_built("render", "RENDER") else {
-        return;
+        std::process::exit(2)
     };
     let mut failures = Vec::new();
     for (collection, rel, deep, expected) in COLLECTIONS {
