@@ -102,16 +102,26 @@ impl<'a> Item<'a> {
     /// The children of one split, each one level deeper; an eye split gives the
     /// `displacementbound` padding and the eye plane's depth ([`eye_split_choice`]).
     fn split(self, eye_split: Option<(f32, f64)>) -> impl Iterator<Item = Item<'a>> {
+        let parts = split_keys(&self.prim, &self.later, eye_split);
+        self.children(parts, eye_split.is_some())
+    }
+
+    /// The items of an already made split of this one (`parts` from [`split_keys`]), each
+    /// one level deeper; `eye_split` says whether it was an eye split.
+    fn children(
+        self,
+        parts: Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)>,
+        eye_split: bool,
+    ) -> impl Iterator<Item = Item<'a>> {
         let Item {
-            prim,
-            later,
             prim_index,
             eye_splits,
             depth,
             path,
+            ..
         } = self;
-        let eye_splits = eye_splits + u32::from(eye_split.is_some());
-        split_keys(&prim, &later, eye_split)
+        let eye_splits = eye_splits + u32::from(eye_split);
+        parts
             .into_iter()
             .enumerate()
             .map(move |(i, (prim, later))| {
@@ -323,12 +333,16 @@ impl Refiner<'_> {
         let surface = self.corner_raster(&surface);
         let micropolygons = (nu - 1) * (nv - 1);
         let over_size = micropolygons > self.grid_size;
-        let too_big = over_size
-            || (micropolygons > MIN_OFF_SCREEN_SPLIT
-                && self.mostly_outside(&surface)
-                && split_shrinks(&item));
-        if too_big && item.depth + 1 < MAX_SPLIT_DEPTH {
-            for child in item.split(None) {
+        // A piece mostly off screen splits so its outside part is culled, if that split
+        // shrinks it (made once here, and kept for the children).
+        let off_screen_split =
+            (!over_size && micropolygons > MIN_OFF_SCREEN_SPLIT && self.mostly_outside(&surface))
+                .then(|| split_keys(&item.prim, &item.later, None))
+                .filter(|parts| split_shrinks(item.prim.get(), parts));
+        if (over_size || off_screen_split.is_some()) && item.depth + 1 < MAX_SPLIT_DEPTH {
+            let parts =
+                off_screen_split.unwrap_or_else(|| split_keys(&item.prim, &item.later, None));
+            for child in item.children(parts, false) {
                 self.refine(child, attrs, defer, out);
             }
             return;
@@ -522,19 +536,17 @@ fn fit_grid(nu: usize, nv: usize, grid_size: usize) -> (usize, usize) {
     (su.max(1) + 1, sv.max(1) + 1)
 }
 
-/// Whether splitting `item` gives a child whose bound is narrower than its own along some
-/// axis by at least 1% of its largest extent. A piece mostly
+/// Whether a split of `own` into `parts` (from [`split_keys`]) gives a child whose bound is
+/// narrower than its own along some axis by at least 1% of its largest extent. A piece mostly
 /// off screen is split so its outside part can be culled; a degenerate piece (flattened by a
 /// singular transformation) can have children with its own bound at every depth, and splitting
 /// it for that reason doubled its pieces down to the deepest split (fuzz finding
 /// `render_rib_slow_c8a56e60`: minutes for an 8×6 frame).
-fn split_shrinks(item: &Item) -> bool {
-    let own = item.prim.get().bound();
+fn split_shrinks(own: &dyn Primitive, parts: &[(PrimRef, Vec<PrimRef>)]) -> bool {
+    let own = own.bound();
     let own_size = own.max - own.min;
-    split_keys(&item.prim, &item.later, None)
-        .iter()
-        .any(|(child, _)| {
-            let b = child.get().bound();
-            (own_size - (b.max - b.min)).max_element() > 0.01 * own_size.max_element()
-        })
+    parts.iter().any(|(child, _)| {
+        let b = child.get().bound();
+        (own_size - (b.max - b.min)).max_element() > 0.01 * own_size.max_element()
+    })
 }
