@@ -87,23 +87,7 @@ const PLANE_Z: f64 = -1.0;
 /// The checker cell `(⌊x/2⌋ + ⌊y/2⌋) mod 2` that the reflection of the camera ray at camera
 /// (x, y) hits, if it hits the plane.
 fn reflected_cell(x: f64, y: f64) -> Option<i64> {
-    let r2 = x * x + y * y;
-    if r2 >= 1.0 {
-        return None;
-    }
-    let z = SPHERE_Z - (1.0 - r2).sqrt();
-    let n = [x, y, z - SPHERE_Z];
-    // I = (0, 0, 1): R = I − 2(I·N)N.
-    let r = [
-        -2.0 * n[2] * n[0],
-        -2.0 * n[2] * n[1],
-        1.0 - 2.0 * n[2] * n[2],
-    ];
-    if r[2] >= -1e-3 {
-        return None;
-    }
-    let t = (PLANE_Z - z) / r[2];
-    let (hx, hy) = (x + t * r[0], y + t * r[1]);
+    let (hx, hy) = support::mirror_sphere_reflection(x, y, SPHERE_Z, PLANE_Z)?;
     Some(((hx / 2.0).floor() as i64 + (hy / 2.0).floor() as i64).rem_euclid(2))
 }
 

@@ -39,22 +39,7 @@ fn g_at(x: f64, y: f64) -> f64 {
 /// Where on the plane the reflection of the camera ray at camera (x, y) lands, if it does
 /// (within the patch).
 fn reflected_hit(x: f64, y: f64) -> Option<(f64, f64)> {
-    let r2 = x * x + y * y;
-    if r2 >= 1.0 {
-        return None;
-    }
-    let z = SPHERE_Z - (1.0 - r2).sqrt();
-    let n = [x, y, z - SPHERE_Z];
-    let r = [
-        -2.0 * n[2] * n[0],
-        -2.0 * n[2] * n[1],
-        1.0 - 2.0 * n[2] * n[2],
-    ];
-    if r[2] >= -1e-3 {
-        return None;
-    }
-    let t = (PLANE_Z - z) / r[2];
-    let (hx, hy) = (x + t * r[0], y + t * r[1]);
+    let (hx, hy) = support::mirror_sphere_reflection(x, y, SPHERE_Z, PLANE_Z)?;
     (hx.abs() < HALF * 0.95 && hy.abs() < HALF * 0.95).then_some((hx, hy))
 }
 

@@ -90,3 +90,28 @@ pub fn facing_pole_holes(r: &illume_render::Rendered) -> Vec<(usize, usize, f32)
     }
     holes
 }
+
+/// Where the reflection of the orthographic camera ray at camera `(x, y)` (direction +z) off a
+/// unit mirror sphere centred at camera `(0, 0, sphere_z)` meets the plane `z = plane_z` behind
+/// the eye, in f64: `None` off the sphere or when the reflected ray runs (nearly) parallel to
+/// the plane or away from it. The closed form the ray-tracing tests compare pixels with.
+#[allow(dead_code)] // only the ray-tracing tests use it
+pub fn mirror_sphere_reflection(x: f64, y: f64, sphere_z: f64, plane_z: f64) -> Option<(f64, f64)> {
+    let r2 = x * x + y * y;
+    if r2 >= 1.0 {
+        return None;
+    }
+    let z = sphere_z - (1.0 - r2).sqrt();
+    let n = [x, y, z - sphere_z];
+    // I = (0, 0, 1): R = I − 2(I·N)N.
+    let r = [
+        -2.0 * n[2] * n[0],
+        -2.0 * n[2] * n[1],
+        1.0 - 2.0 * n[2] * n[2],
+    ];
+    if r[2] >= -1e-3 {
+        return None;
+    }
+    let t = (plane_z - z) / r[2];
+    Some((x + t * r[0], y + t * r[1]))
+}
