@@ -27,6 +27,7 @@ mod sample_buffer;
 pub mod sampling;
 mod shader;
 mod still_grid;
+mod stratum_bound;
 mod time_strata;
 mod visible;
 mod visible_lists;

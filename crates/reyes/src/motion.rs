@@ -20,6 +20,7 @@
 use crate::dice::ShadedGrid;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
+use crate::stratum_bound::{cut_corners, strata_paths, stratum_bound, StratumBound, StratumPath};
 use crate::time_strata::{stratum_count, stratum_cuts, stratum_samples, time_slack};
 use glam::{DVec3, Vec3};
 use illume_ri::motion::segment;
@@ -118,7 +119,7 @@ impl GridMotion {
         }
     }
 
-    fn at(&self, v: usize, (k, w): (usize, f64)) -> DVec3 {
+    pub(crate) fn at(&self, v: usize, (k, w): (usize, f64)) -> DVec3 {
         let a = self.keys[k][v].as_dvec3();
         if w == 0.0 || self.keys.len() == 1 {
             return a;
@@ -126,191 +127,6 @@ impl GridMotion {
         let b = self.keys[k + 1][v].as_dvec3();
         a + (b - a) * w
     }
-}
-
-/// What bounds a moving micropolygon over one time stratum `[t0, t1]`.
-#[derive(Clone, Copy, Debug)]
-struct StratumBound {
-    /// Raster box `[x0, x1, y0, y1]` of its whole path over the stratum.
-    path: [f64; 4],
-    /// Stratum start and the mean raster velocity (pixels per unit time) of its corners.
-    t0: f64,
-    v: [f64; 2],
-    /// Raster box holding the micropolygon at every time `t` of the stratum once moved back
-    /// by `v·(t − t0)`: a sample `(x, y, t)` it covers lies inside after the same move.
-    still: [f64; 4],
-    /// The corners' raster chords over the stratum, when no key lies inside it.
-    chord: Option<Chord>,
-}
-
-/// The straight raster paths of a micropolygon's corners over one stratum `[t0, t0 + Δt]`
-/// without a key inside: corner `k` runs from `a[k]` by `d[k]` (raster x, y and camera z).
-#[derive(Clone, Copy, Debug)]
-struct Chord {
-    a: [DVec3; 4],
-    d: [DVec3; 4],
-    inv_dt: f64,
-    persp: bool,
-}
-
-impl Chord {
-    /// The corners at time `t` (`None` when one is behind the eye). Raster x, y are `X/W`
-    /// with `X`, `W` linear in `t` (`W` the camera depth, or 1 orthographic), so corner `k`
-    /// has done the fraction `s = τ·W₁/W(τ)` of its chord at `τ = (t − t0)/Δt`; its depth is
-    /// linear in `τ`. The same positions as projecting the interpolated camera-space corners,
-    /// without a projection per sample.
-    #[inline]
-    fn corners(&self, t: f64, t0: f64) -> Option<[DVec3; 4]> {
-        let tau = (t - t0) * self.inv_dt;
-        let mut v = [DVec3::ZERO; 4];
-        for ((q, a), d) in v.iter_mut().zip(&self.a).zip(&self.d) {
-            let z = a.z + d.z * tau;
-            let s = if self.persp {
-                if z <= 0.0 {
-                    return None;
-                }
-                tau * (a.z + d.z) / z
-            } else {
-                tau
-            };
-            *q = DVec3::new(a.x + d.x * s, a.y + d.y * s, z);
-        }
-        Some(v)
-    }
-}
-
-/// The per-stratum bounds of micropolygon `quad` between consecutive `cuts` (times), in two
-/// steps: [`strata_paths`] (each cut's corners and each stratum's `path`, set up once per
-/// grid) and [`stratum_bound`] (the rest, only for the strata a bucket reaches).
-///
-/// A vertex moves linearly in camera space between keys, hence along a straight raster line
-/// (a projective map keeps lines), so the box of its positions at a stratum's two cuts and at
-/// every key between holds its whole path there (`path`). Without a key inside the stratum,
-/// vertex `k` is at `a_k + d_k·s_k(t)` with `d_k` its raster step over the stratum and `s_k`
-/// the fraction of it done at `t`: raster coordinates are `X/W` with `X`, `W` (camera depth,
-/// or 1 for an orthographic camera) linear in `t`, so `s − τ = τ(1 − τ)(W₁ − W₀)/W(τ)` for
-/// `τ = (t − t0)/(t1 − t0)`, at most `q_k = |W₁ − W₀| / (4·min W)` away from `τ`. Moved back
-/// by the mean velocity `v`, the vertex is at `a_k + (d_k − v·Δt)·τ + d_k·(s_k − τ)`: inside
-/// the box spanned by `a_k` and `a_k + d_k − v·Δt`, grown by `q_k·|d_k|` (`still`). For a
-/// micropolygon that moves rigidly (camera blur, a translation) that box is its own size, so
-/// a sample costs two multiply-adds and compares to reject instead of a full test. Each
-/// position is projected once and shared by the two strata it ends. `None` when a position
-/// does not project.
-fn strata_paths(
-    m: &GridMotion,
-    quad: &[usize; 4],
-    cuts: &[f64],
-    project: &impl Fn(DVec3) -> Option<DVec3>,
-    paths: &mut Vec<StratumPath>,
-) -> Option<()> {
-    let at = |p: DVec3| project(p).filter(|q| q.is_finite());
-    let mut start = cut_corners(m, quad, *cuts.first()?, project)?;
-    paths.clear();
-    for w in cuts.windows(2) {
-        let end = cut_corners(m, quad, w[1], project)?;
-        let mut b = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-        start
-            .iter()
-            .chain(&end)
-            .for_each(|&q| add_box(&mut b, q, q));
-        let mut inner_key = false;
-        for (key, &t) in m.keys.iter().zip(&m.times) {
-            if t > w[0] && t < w[1] {
-                inner_key = true;
-                for &k in quad {
-                    let q = at(key[k].as_dvec3())?;
-                    add_box(&mut b, q, q);
-                }
-            }
-        }
-        paths.push(StratumPath { path: b, inner_key });
-        start = end;
-    }
-    Some(())
-}
-
-/// The raster corners of micropolygon `quad` at time `t` (`None` when one does not project).
-#[inline]
-fn cut_corners(
-    m: &GridMotion,
-    quad: &[usize; 4],
-    t: f64,
-    project: &impl Fn(DVec3) -> Option<DVec3>,
-) -> Option<[DVec3; 4]> {
-    let seg = segment(&m.times, t);
-    let mut v = [DVec3::ZERO; 4];
-    for (q, &k) in v.iter_mut().zip(quad) {
-        *q = project(m.at(k, seg)).filter(|q| q.is_finite())?;
-    }
-    Some(v)
-}
-
-/// Grows raster box `b` by the box spanned by `lo` and `hi`.
-#[inline]
-fn add_box(b: &mut [f64; 4], lo: DVec3, hi: DVec3) {
-    *b = [
-        b[0].min(lo.x),
-        b[1].max(hi.x),
-        b[2].min(lo.y),
-        b[3].max(hi.y),
-    ];
-}
-
-/// A stratum's path box (`StratumBound::path`) and whether a key lies strictly inside it.
-#[derive(Clone, Copy, Debug)]
-struct StratumPath {
-    path: [f64; 4],
-    inner_key: bool,
-}
-
-/// The bound of stratum `[t0, t1]` with path `p`, its corners at `t0` (`start`) and `t1`
-/// (`end`): the `still` box and chord when no key lies inside it (see [`strata_paths`]).
-fn stratum_bound(
-    p: StratumPath,
-    start: &[DVec3; 4],
-    end: &[DVec3; 4],
-    [t0, t1]: [f64; 2],
-    persp: bool,
-) -> StratumBound {
-    let b = p.path;
-    let dt = t1 - t0;
-    let mut bound = StratumBound {
-        path: b,
-        t0,
-        v: [0.0; 2],
-        still: b,
-        chord: None,
-    };
-    if !p.inner_key && dt > 0.0 {
-        let mean = start.iter().zip(end).map(|(a, e)| *e - *a).sum::<DVec3>() * 0.25;
-        let mut s = [f64::MAX, f64::MIN, f64::MAX, f64::MIN];
-        for (a, e) in start.iter().zip(end) {
-            let d = *e - *a;
-            let q = if persp {
-                0.25 * (e.z - a.z).abs() / a.z.min(e.z)
-            } else {
-                0.0
-            };
-            let r = d - mean;
-            let grow = DVec3::new(d.x.abs(), d.y.abs(), 0.0) * q;
-            add_box(
-                &mut s,
-                *a + r.min(DVec3::ZERO) - grow,
-                *a + r.max(DVec3::ZERO) + grow,
-            );
-        }
-        if s.iter().all(|x| x.is_finite()) {
-            bound.v = [mean.x / dt, mean.y / dt];
-            bound.still = s;
-            bound.chord = Some(Chord {
-                a: *start,
-                d: [0, 1, 2, 3].map(|k| end[k] - start[k]),
-                inv_dt: 1.0 / dt,
-                persp,
-            });
-        }
-    }
-    bound
 }
 
 /// A bound on how far (raster pixels, either axis) a vertex of a micropolygon with raster box
