@@ -143,131 +143,145 @@ const Q16: Quantize = Quantize {
     dither: 0.5,
 };
 
+/// One display kind: file, display type, mode, quantization, and what OpenImageIO should say.
+fn case(
+    file: &'static str,
+    kind: &'static str,
+    mode: &'static str,
+    quantize: Quantize,
+    oiio_type: &'static str,
+    oiio_format: &'static str,
+    oiio_channels: &'static [&'static str],
+) -> Case {
+    Case {
+        file,
+        kind,
+        mode,
+        quantize,
+        oiio_type,
+        oiio_format,
+        oiio_channels,
+    }
+}
+
+/// Every display kind we write, with what OpenImageIO should call it. TIFF has no channel names:
+/// OpenImageIO calls an unspecified extra sample `channel3` and a lone grey sample `Y` (our
+/// reader restores `z` from the ImageDescription we write). PNG alpha is unassociated: we
+/// divide on writing, and both readers multiply back.
+fn display_kinds() -> Vec<Case> {
+    let d = Quantize::RGBA_DEFAULT;
+    let f = Quantize::FLOAT;
+    let rgb: &[&str] = &["R", "G", "B"];
+    let rgba: &[&str] = &["R", "G", "B", "A"];
+    #[rustfmt::skip]
+    let cases = vec![
+        case("rgb8.tif", "tiff", "rgb", d, "uint8", "tiff", rgb),
+        case("rgba16.tif", "file", "rgba", Q16, "uint16", "tiff", rgba),
+        case("a8.tif", "tiff", "a", d, "uint8", "tiff", &["Y"]),
+        case("rgbaf.tif", "tiff", "rgba", f, "float", "tiff", rgba),
+        case("rgbz.tif", "tiff", "rgbz", d, "float", "tiff", &["R", "G", "B", "channel3"]),
+        case("z.tif", "tiff", "z", f, "float", "tiff", &["Y"]),
+        case("rgb8.png", "png", "rgb", d, "uint8", "png", rgb),
+        case("rgba16.png", "png", "rgba", Q16, "uint16", "png", rgba),
+        case("fb.tif", "framebuffer", "rgba", d, "uint8", "png", rgba),
+        case("rgba.exr", "openexr", "rgba", d, "half", "openexr", rgba),
+        case("rgbaf.exr", "exr", "rgba", f, "float", "openexr", rgba),
+        case("z.zfile", "zfile", "z", f, "float", "zfile", &["z"]),
+    ];
+    cases
+}
+
+/// `iinfo`'s size, channel count, type, format and channel names against `case`'s.
+fn check_header(case: &Case, path: &Path, failures: &mut Vec<String>) {
+    let (w, h, nc, ty, format, names) = iinfo(path);
+    let want = (
+        29,
+        13,
+        case.oiio_channels.len(),
+        case.oiio_type,
+        case.oiio_format,
+    );
+    if (w, h, nc, ty.as_str(), format.as_str()) != want {
+        failures.push(format!(
+            "{}: iinfo says {w}x{h} {nc} {ty} {format}, expected {want:?}",
+            case.file
+        ));
+    }
+    let want_names: Vec<String> = case.oiio_channels.iter().map(|s| s.to_string()).collect();
+    if names != want_names && case.oiio_format != "zfile" {
+        failures.push(format!(
+            "{}: channel list {names:?}, expected {want_names:?}",
+            case.file
+        ));
+    }
+}
+
+/// The depth matrices: named attributes in OpenEXR, both matrices in file order in a zfile.
+fn check_matrices(case: &Case, path: &Path, depth: &DepthMatrices, failures: &mut Vec<String>) {
+    if case.oiio_format != "openexr" && case.oiio_format != "zfile" {
+        return;
+    }
+    let out = Command::new("iinfo").arg("-v").arg(path).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    if case.oiio_format == "openexr" {
+        for attr in ["worldToCamera", "worldToNDC"] {
+            if !text.contains(attr) {
+                failures.push(format!("{}: iinfo shows no {attr}:\n{text}", case.file));
+            }
+        }
+        return;
+    }
+    for (key, m) in [
+        ("worldtocamera:", depth.world_to_camera),
+        ("worldtoscreen:", depth.world_to_screen),
+    ] {
+        let shown: Vec<f32> = text
+            .lines()
+            .find_map(|l| l.trim().strip_prefix(key))
+            .map(|l| l.split(',').map(|v| v.trim().parse().unwrap()).collect())
+            .unwrap_or_default();
+        if shown != m {
+            failures.push(format!("zfile {key} {shown:?}, expected {m:?}"));
+        }
+    }
+}
+
+/// Per-channel min, max and mean as `oiiotool --stats` reads the file against our reader's.
+fn check_stats(case: &Case, path: &Path, failures: &mut Vec<String>) {
+    let theirs = oiio_stats(path);
+    let ours = our_stats(&read_image(path).unwrap());
+    assert_eq!(theirs.len(), ours.len(), "{}", case.file);
+    for (c, (t, o)) in theirs.iter().zip(&ours).enumerate() {
+        for k in 0..3 {
+            // oiiotool prints 2 decimals of integer codes, or 6 significant float digits.
+            let mut tol = 1e-4 * (1.0 + o[k].abs());
+            if case.oiio_format == "png" && case.oiio_type == "uint8" && c < 3 {
+                // OpenImageIO premultiplies an 8-bit PNG in 8-bit, rounding each result
+                // to a code value; we premultiply in float.
+                tol = 0.5 / 255.0 + 1e-6;
+            }
+            if (t[k] - o[k]).abs() > tol {
+                failures.push(format!(
+                    "{} channel {c} stat {k}: oiiotool {} vs ours {}",
+                    case.file, t[k], o[k]
+                ));
+            }
+        }
+    }
+}
+
 #[test]
 fn oiio_reads_every_display_kind_we_write() {
     if !have("iinfo") || !have("oiiotool") {
         return;
     }
     let dir = scratch("kinds");
-    // TIFF has no channel names: OpenImageIO calls an unspecified extra sample `channel3` and a
-    // lone grey sample `Y` (our reader restores `z` from the ImageDescription we write).
-    let cases = [
-        Case {
-            file: "rgb8.tif",
-            kind: "tiff",
-            mode: "rgb",
-            quantize: Quantize::RGBA_DEFAULT,
-            oiio_type: "uint8",
-            oiio_format: "tiff",
-            oiio_channels: &["R", "G", "B"],
-        },
-        Case {
-            file: "rgba16.tif",
-            kind: "file",
-            mode: "rgba",
-            quantize: Q16,
-            oiio_type: "uint16",
-            oiio_format: "tiff",
-            oiio_channels: &["R", "G", "B", "A"],
-        },
-        Case {
-            file: "a8.tif",
-            kind: "tiff",
-            mode: "a",
-            quantize: Quantize::RGBA_DEFAULT,
-            oiio_type: "uint8",
-            oiio_format: "tiff",
-            oiio_channels: &["Y"],
-        },
-        Case {
-            file: "rgbaf.tif",
-            kind: "tiff",
-            mode: "rgba",
-            quantize: Quantize::FLOAT,
-            oiio_type: "float",
-            oiio_format: "tiff",
-            oiio_channels: &["R", "G", "B", "A"],
-        },
-        Case {
-            file: "rgbz.tif",
-            kind: "tiff",
-            mode: "rgbz",
-            quantize: Quantize::RGBA_DEFAULT,
-            oiio_type: "float",
-            oiio_format: "tiff",
-            oiio_channels: &["R", "G", "B", "channel3"],
-        },
-        Case {
-            file: "z.tif",
-            kind: "tiff",
-            mode: "z",
-            quantize: Quantize::FLOAT,
-            oiio_type: "float",
-            oiio_format: "tiff",
-            oiio_channels: &["Y"],
-        },
-        Case {
-            file: "rgb8.png",
-            kind: "png",
-            mode: "rgb",
-            quantize: Quantize::RGBA_DEFAULT,
-            oiio_type: "uint8",
-            oiio_format: "png",
-            oiio_channels: &["R", "G", "B"],
-        },
-        // PNG alpha is unassociated: we divide on writing, and both readers multiply back.
-        Case {
-            file: "rgba16.png",
-            kind: "png",
-            mode: "rgba",
-            quantize: Q16,
-            oiio_type: "uint16",
-            oiio_format: "png",
-            oiio_channels: &["R", "G", "B", "A"],
-        },
-        Case {
-            file: "fb.tif",
-            kind: "framebuffer",
-            mode: "rgba",
-            quantize: Quantize::RGBA_DEFAULT,
-            oiio_type: "uint8",
-            oiio_format: "png",
-            oiio_channels: &["R", "G", "B", "A"],
-        },
-        Case {
-            file: "rgba.exr",
-            kind: "openexr",
-            mode: "rgba",
-            quantize: Quantize::RGBA_DEFAULT,
-            oiio_type: "half",
-            oiio_format: "openexr",
-            oiio_channels: &["R", "G", "B", "A"],
-        },
-        Case {
-            file: "rgbaf.exr",
-            kind: "exr",
-            mode: "rgba",
-            quantize: Quantize::FLOAT,
-            oiio_type: "float",
-            oiio_format: "openexr",
-            oiio_channels: &["R", "G", "B", "A"],
-        },
-        Case {
-            file: "z.zfile",
-            kind: "zfile",
-            mode: "z",
-            quantize: Quantize::FLOAT,
-            oiio_type: "float",
-            oiio_format: "zfile",
-            oiio_channels: &["z"],
-        },
-    ];
     let depth = DepthMatrices {
         world_to_screen: std::array::from_fn(|i| if i % 5 == 0 { 1.5 } else { 0.0 }),
         world_to_camera: std::array::from_fn(|i| if i % 5 == 0 { 1.0 } else { 0.25 * i as f32 }),
     };
     let mut failures = Vec::new();
-    for case in &cases {
+    for case in &display_kinds() {
         let image = pattern(29, 13, case.mode);
         let written = dir.join(case.file);
         write_display(&written, case.kind, &image, case.quantize, Some(&depth)).unwrap();
@@ -276,74 +290,9 @@ fn oiio_reads_every_display_kind_we_write() {
         } else {
             written
         };
-        let (w, h, nc, ty, format, names) = iinfo(&path);
-        let want = (
-            29,
-            13,
-            case.oiio_channels.len(),
-            case.oiio_type,
-            case.oiio_format,
-        );
-        if (w, h, nc, ty.as_str(), format.as_str()) != want {
-            failures.push(format!(
-                "{}: iinfo says {w}x{h} {nc} {ty} {format}, expected {want:?}",
-                case.file
-            ));
-        }
-        let want_names: Vec<String> = case.oiio_channels.iter().map(|s| s.to_string()).collect();
-        if names != want_names && case.oiio_format != "zfile" {
-            failures.push(format!(
-                "{}: channel list {names:?}, expected {want_names:?}",
-                case.file
-            ));
-        }
-        if case.oiio_format == "openexr" {
-            let out = Command::new("iinfo").arg("-v").arg(&path).output().unwrap();
-            let text = String::from_utf8_lossy(&out.stdout);
-            for attr in ["worldToCamera", "worldToNDC"] {
-                if !text.contains(attr) {
-                    failures.push(format!("{}: iinfo shows no {attr}:\n{text}", case.file));
-                }
-            }
-        }
-        if case.oiio_format == "zfile" {
-            // OpenImageIO's zfile reader shows both matrices in file order.
-            let out = Command::new("iinfo").arg("-v").arg(&path).output().unwrap();
-            let text = String::from_utf8_lossy(&out.stdout);
-            for (key, m) in [
-                ("worldtocamera:", depth.world_to_camera),
-                ("worldtoscreen:", depth.world_to_screen),
-            ] {
-                let shown: Vec<f32> = text
-                    .lines()
-                    .find_map(|l| l.trim().strip_prefix(key))
-                    .map(|l| l.split(',').map(|v| v.trim().parse().unwrap()).collect())
-                    .unwrap_or_default();
-                if shown != m {
-                    failures.push(format!("zfile {key} {shown:?}, expected {m:?}"));
-                }
-            }
-        }
-        let theirs = oiio_stats(&path);
-        let ours = our_stats(&read_image(&path).unwrap());
-        assert_eq!(theirs.len(), ours.len(), "{}", case.file);
-        for (c, (t, o)) in theirs.iter().zip(&ours).enumerate() {
-            for k in 0..3 {
-                // oiiotool prints 2 decimals of integer codes, or 6 significant float digits.
-                let mut tol = 1e-4 * (1.0 + o[k].abs());
-                if case.oiio_format == "png" && case.oiio_type == "uint8" && c < 3 {
-                    // OpenImageIO premultiplies an 8-bit PNG in 8-bit, rounding each result
-                    // to a code value; we premultiply in float.
-                    tol = 0.5 / 255.0 + 1e-6;
-                }
-                if (t[k] - o[k]).abs() > tol {
-                    failures.push(format!(
-                        "{} channel {c} stat {k}: oiiotool {} vs ours {}",
-                        case.file, t[k], o[k]
-                    ));
-                }
-            }
-        }
+        check_header(case, &path, &mut failures);
+        check_matrices(case, &path, &depth, &mut failures);
+        check_stats(case, &path, &mut failures);
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

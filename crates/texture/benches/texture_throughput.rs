@@ -104,15 +104,8 @@ fn cube_under_pressure(cube: &std::path::Path) {
     );
 }
 
-fn main() {
-    let dir = std::env::temp_dir().join(format!("illume-texture-bench-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-
-    if std::env::args().any(|a| a == "cache-pressure") {
-        cube_under_pressure(&build_cube(&dir));
-        let _ = std::fs::remove_dir_all(&dir);
-        return;
-    }
+/// A 4K periodic RGB texture without resizing; prints the build rate.
+fn build_plain(dir: &std::path::Path) -> std::path::PathBuf {
     let big = image(4096, 4096, pattern);
     let tx = dir.join("4k.tx");
     let opts = MakeOptions {
@@ -129,8 +122,11 @@ fn main() {
         16.777216 / secs
     );
 
-    let cache = TextureCache::new(256 << 20);
-    let name = tx.to_str().unwrap();
+    tx
+}
+
+/// Plain texture lookups at four footprints, cold and warm.
+fn plain_lookups(cache: &TextureCache, name: &str) {
     let n: u64 = 200_000;
     for (blur, width) in [
         (0.0f32, 1.0 / 4096.0),
@@ -164,8 +160,10 @@ fn main() {
         );
         }
     }
-    let cube = build_cube(&dir);
-    let cname = cube.to_str().unwrap();
+}
+
+/// Environment lookups on the 2K cube at three blurs, cold and warm.
+fn environment_lookups(cache: &TextureCache, cname: &str) {
     for blur in [0.0f32, 0.01, 0.1] {
         let o = LookupOptions {
             blur,
@@ -186,7 +184,11 @@ fn main() {
             );
         }
     }
-    // Shadow: a 2K depth map of a sphere-ish bump over a floor, light looking down +z.
+}
+
+/// Shadow-map lookups at four sample counts and blurs.
+fn shadow_lookups(cache: &TextureCache, dir: &std::path::Path) {
+    // A 2K depth map of a sphere-ish bump over a floor, light looking down +z.
     let n = 2048u32;
     let depth = Image {
         width: n,
@@ -240,8 +242,11 @@ fn main() {
             sum / k as f32
         );
     }
-    // Accuracy: filtered lookups against a brute-force reference that averages 32×32 unfiltered
-    // (level-0 bilinear) lookups over the same footprint with the same Gaussian weights.
+}
+
+/// Filtered lookups against a brute-force reference that averages 32×32 unfiltered (level-0
+/// bilinear) lookups over the same footprint with the same Gaussian weights.
+fn texture_accuracy(cache: &TextureCache, name: &str) {
     for blur in [0.002f32, 0.01, 0.05] {
         let o = LookupOptions {
             blur,
@@ -276,6 +281,25 @@ fn main() {
             worst
         );
     }
+}
+
+fn main() {
+    let dir = std::env::temp_dir().join(format!("illume-texture-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+
+    if std::env::args().any(|a| a == "cache-pressure") {
+        cube_under_pressure(&build_cube(&dir));
+        let _ = std::fs::remove_dir_all(&dir);
+        return;
+    }
+    let tx = build_plain(&dir);
+    let cache = TextureCache::new(256 << 20);
+    let name = tx.to_str().unwrap();
+    plain_lookups(&cache, name);
+    let cube = build_cube(&dir);
+    environment_lookups(&cache, cube.to_str().unwrap());
+    shadow_lookups(&cache, &dir);
+    texture_accuracy(&cache, name);
     let st = cache.stats();
     println!(
         "cache: {} tiles read, hit rate {:.4}, {:.1} MB read, peak {:.1} MB",
