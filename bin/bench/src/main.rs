@@ -418,10 +418,22 @@ fn main() -> ExitCode {
             }
         };
     }
+    sweep_all(&args, &render, &rib_dir, &scratch, threads, own_scratch)
+}
+
+/// The default mode: every scene's quality-knob sweep, written as CSV, plots and a table.
+fn sweep_all(
+    args: &Args,
+    render: &Path,
+    rib_dir: &Path,
+    scratch: &Path,
+    threads: usize,
+    own_scratch: bool,
+) -> ExitCode {
     let defaults = Settings::defaults(256, threads);
     let cfg = SweepConfig {
-        render: &render,
-        scratch: &scratch,
+        render,
+        scratch,
         quick: args.quick,
         repeat: args.repeat.unwrap_or(if args.quick { 1 } else { 2 }),
         defaults,
@@ -429,7 +441,7 @@ fn main() -> ExitCode {
     let start = Instant::now();
     let mut results = Vec::new();
     let mut failures = 0;
-    for scene in scenes(args.quick, &rib_dir) {
+    for scene in scenes(args.quick, rib_dir) {
         match sweep_scene(&scene, &cfg) {
             Ok(points) => results.push((scene.name.clone(), points)),
             Err(e) => {
@@ -445,7 +457,7 @@ fn main() -> ExitCode {
         results.len()
     );
     if own_scratch {
-        let _ = std::fs::remove_dir_all(&scratch);
+        let _ = std::fs::remove_dir_all(scratch);
     }
     if results.is_empty() {
         eprintln!("bench: nothing measured");
