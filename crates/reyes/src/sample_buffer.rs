@@ -10,7 +10,7 @@ use crate::csg::NO_SOLID;
 use crate::dice::ShadedGrid;
 use crate::film::SampleRegion;
 pub(crate) use crate::raster_triangle::{split_quad, RasterTriangle};
-use crate::sampling::{sample_position, sample_time_lens};
+use crate::sampling::{pixel_sample_positions, sample_time_lens};
 use crate::time_strata::{push_time_ordered, TimedSample};
 use crate::visible::{VisiblePoint, NO_AOV};
 use crate::visible_lists::VisibleLists;
@@ -102,15 +102,8 @@ impl SampleBuffer {
         } = SPARE.with(|s| s.borrow_mut().take()).unwrap_or_default();
         pos.clear();
         pos.reserve(n);
-        for py in sy0..sy1 {
-            for px in sx0..sx1 {
-                for j in 0..spp[1] {
-                    for i in 0..spp[0] {
-                        pos.push(sample_position(px, py, i, j, spp, set.frame, set.jitter));
-                    }
-                }
-            }
-        }
+        let rect = [sx0, sx1, sy0, sy1];
+        pixel_sample_positions(rect, spp, set.frame, set.jitter, &mut pos);
         timed.clear();
         if set.blur {
             timed.reserve(pos.len());
