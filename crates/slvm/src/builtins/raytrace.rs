@@ -199,11 +199,9 @@ impl Exec<'_> {
         let stream = OCCLUSION_STREAM ^ seed;
         let shift = illume_shade::stratified_sample(p, 0, 1, stream);
         let jitter = illume_shade::lowbias32((shift.0 * 16_777_216.0) as u32 ^ stream);
-        let mut blocked = 0.0f64;
-        pattern.directions(nd, shift, jitter, |dir| {
-            let through = t.transmission(&start, dir, maxdist);
-            blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
-        });
+        let mut dirs = Vec::with_capacity(pattern.len());
+        pattern.directions(nd, shift, jitter, |dir| dirs.push(dir));
+        let blocked = t.blocked(&start, &dirs, maxdist);
         (blocked / pattern.len() as f64) as f32
     }
 
