@@ -180,16 +180,16 @@ impl RayTracer for FrameShading<'_> {
         let (p, ng, offset) = self.origin_frame(scene, from);
         let origins = [p + ng * -offset, p + ng * offset];
         let seen = origins.map(|o| scene.seen_from(from.primitive, o));
-        let mut stack = scene.bvh().stack();
+        let bvh = scene.bvh();
+        let mut stack = bvh.stack();
         for &dir in dirs {
-            let side = usize::from(!(ng.dot(dir) < 0.0));
+            let side = if ng.dot(dir) < 0.0 { 0 } else { 1 };
             let skip = match seen[side] {
                 Some(s) if s.excludes(dir) => from.primitive as u32,
                 _ => NO_GROUP,
             };
             let range = (0.0, t_max);
-            let hit =
-                (scene.bvh()).occluded_with(&mut stack, origins[side], dir, range, skip, &opaque);
+            let hit = bvh.occluded_with(&mut stack, origins[side], dir, range, skip, &opaque);
             // As `transmission`'s 0 or 1 in every channel.
             blocked += if hit { 1.0 } else { 0.0 };
         }
