@@ -355,12 +355,11 @@ impl Bvh {
     /// reused by many rays (clearing a fresh one per ray was 3.5% of an `occlusion()` frame,
     /// issue 19).
     pub fn stack(&self) -> TraversalStack {
-        let len = if self.stats.max_depth <= SHALLOW_DEPTH {
-            SHALLOW_STACK
+        if self.stats.max_depth <= SHALLOW_DEPTH {
+            TraversalStack::Shallow([(0, 0.0); SHALLOW_STACK])
         } else {
-            STACK
-        };
-        TraversalStack(vec![(0, 0.0); len])
+            TraversalStack::Deep(vec![(0, 0.0); STACK])
+        }
     }
 
     /// [`Bvh::occluded_except`] on the caller's `stack` (from [`Bvh::stack`] of this tree).
@@ -380,7 +379,11 @@ impl Bvh {
             any: true,
             skip,
         };
-        self.traverse(&mut stack.0, q, t_max, keep).is_some()
+        let stack = match stack {
+            TraversalStack::Shallow(s) => &mut s[..],
+            TraversalStack::Deep(s) => &mut s[..],
+        };
+        self.traverse(stack, q, t_max, keep).is_some()
     }
 
     /// [`Bvh::nearest_hit`] passing over group `skip` (as [`Bvh::occluded_except`]).
@@ -581,9 +584,14 @@ struct Query {
     skip: u32,
 }
 
-/// A traversal stack that many rays reuse ([`Bvh::stack`]).
+/// A traversal stack that many rays reuse ([`Bvh::stack`]): in place for a shallow tree (no
+/// allocation per shaded point), on the heap for a deep one.
 #[derive(Clone, Debug)]
-pub struct TraversalStack(Vec<(u32, f32)>);
+#[allow(clippy::large_enum_variant)] // in place on purpose: one per shaded point, on its stack
+pub enum TraversalStack {
+    Shallow([(u32, f32); SHALLOW_STACK]),
+    Deep(Vec<(u32, f32)>),
+}
 
 /// The ray prepared for triangle tests, made on first use.
 fn prepare(slot: &mut Option<PreparedRay>, origin: DVec3, dir: DVec3) -> Option<&PreparedRay> {
