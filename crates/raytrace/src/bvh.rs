@@ -19,6 +19,12 @@ const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
 /// SAH cost of one traversal step relative to one triangle test.
 const TRAVERSAL_COST: f32 = 1.0;
+/// SAH cost of one closed-form quadric test relative to one triangle test. Counted as a
+/// triangle, quadrics shared leaves of three or four (the nine spheres of the `occlusion`
+/// bench, issue 19): a ray entering such a leaf tested every sphere in it, about one sphere
+/// test per ray; as four, each sphere gets its own box, which the four-wide node tests at
+/// once. Trees of triangles alone are built as before.
+const QUADRIC_COST: f32 = 4.0;
 /// The binary tree's depth is bounded by this (a leaf is forced below it; only a heap of
 /// more than 65535 triangles with one centroid chains deeper, by its log₂).
 const MAX_DEPTH: usize = 60;
@@ -154,6 +160,8 @@ struct Build<'a> {
     node_group: Vec<u32>,
     bounds: Vec<Aabb>,
     centroids: Vec<Vec3>,
+    /// Per item (build index): its SAH cost (1 for a triangle, [`QUADRIC_COST`]).
+    costs: Vec<f32>,
     order: Vec<u32>,
     nodes: Vec<Node>,
     stats: BvhStats,
@@ -231,6 +239,13 @@ impl Bvh {
             node_group: Vec::new(),
             bounds,
             centroids,
+            costs: items
+                .iter()
+                .map(|i| match i {
+                    Item::Triangle(_) => 1.0,
+                    Item::Quadric(_) => QUADRIC_COST,
+                })
+                .collect(),
             order: (0..items.len() as u32).collect(),
             nodes: Vec::with_capacity(2 * items.len() / MAX_LEAF + 1),
             stats: BvhStats {
@@ -336,6 +351,41 @@ impl Bvh {
             .is_some()
     }
 
+    /// A traversal stack sized for this tree, for [`Bvh::occluded_with`]: filled once and
+    /// reused by many rays (clearing a fresh one per ray was 3.5% of an `occlusion()` frame,
+    /// issue 19).
+    pub fn stack(&self) -> TraversalStack {
+        if self.stats.max_depth <= SHALLOW_DEPTH {
+            TraversalStack::Shallow([(0, 0.0); SHALLOW_STACK])
+        } else {
+            TraversalStack::Deep(vec![(0, 0.0); STACK])
+        }
+    }
+
+    /// [`Bvh::occluded_except`] on the caller's `stack` (from [`Bvh::stack`] of this tree).
+    pub fn occluded_with(
+        &self,
+        stack: &mut TraversalStack,
+        origin: DVec3,
+        dir: DVec3,
+        (t_min, t_max): (f64, f64),
+        skip: u32,
+        keep: &dyn Fn(u32) -> bool,
+    ) -> bool {
+        let q = Query {
+            origin,
+            dir,
+            t_min,
+            any: true,
+            skip,
+        };
+        let stack = match stack {
+            TraversalStack::Shallow(s) => &mut s[..],
+            TraversalStack::Deep(s) => &mut s[..],
+        };
+        self.traverse(stack, q, t_max, keep).is_some()
+    }
+
     /// [`Bvh::nearest_hit`] passing over group `skip` (as [`Bvh::occluded_except`]).
     pub fn nearest_hit_except(
         &self,
@@ -379,24 +429,35 @@ impl Bvh {
         skip: u32,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
+        let q = Query {
+            origin,
+            dir,
+            t_min,
+            any,
+            skip,
+        };
         if self.stats.max_depth <= SHALLOW_DEPTH {
-            self.traverse::<SHALLOW_STACK>(origin, dir, t_min, t_max, any, skip, keep)
+            self.traverse(&mut [(0, 0.0); SHALLOW_STACK], q, t_max, keep)
         } else {
-            self.traverse::<STACK>(origin, dir, t_min, t_max, any, skip, keep)
+            self.traverse(&mut [(0, 0.0); STACK], q, t_max, keep)
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn traverse<const N: usize>(
+    /// The traversal on `stack` (long enough for this tree: [`Bvh::stack`]).
+    fn traverse(
         &self,
-        origin: DVec3,
-        dir: DVec3,
-        t_min: f64,
+        stack: &mut [(u32, f32)],
+        q: Query,
         mut t_max: f64,
-        any: bool,
-        skip: u32,
         keep: &dyn Fn(u32) -> bool,
     ) -> Option<Hit> {
+        let Query {
+            origin,
+            dir,
+            t_min,
+            any,
+            skip,
+        } = q;
         // Without groups nothing is skipped (every triangle's group is NO_GROUP).
         let skip = if self.groups.is_empty() {
             NO_GROUP
@@ -415,7 +476,6 @@ impl Bvh {
         let wide = SlabRay::new(origin, dir, self.scale).map(|r| WideRay::new(&r));
         // Pending nodes with where the ray enters them, so the nearest is visited first and
         // nodes beyond a hit found meanwhile are skipped.
-        let mut stack = [(0u32, 0.0f32); N];
         let mut top = 0usize;
         let mut current = 0u32;
         let mut found = None;
@@ -513,6 +573,26 @@ impl Bvh {
     }
 }
 
+/// A ray's part of a traversal: where it starts, which way, from where along it hits count,
+/// whether any hit will do, and the group it passes over.
+#[derive(Clone, Copy)]
+struct Query {
+    origin: DVec3,
+    dir: DVec3,
+    t_min: f64,
+    any: bool,
+    skip: u32,
+}
+
+/// A traversal stack that many rays reuse ([`Bvh::stack`]): in place for a shallow tree (no
+/// allocation per shaded point), on the heap for a deep one.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)] // in place on purpose: one per shaded point, on its stack
+pub enum TraversalStack {
+    Shallow([(u32, f32); SHALLOW_STACK]),
+    Deep(Vec<(u32, f32)>),
+}
+
 /// The ray prepared for triangle tests, made on first use.
 fn prepare(slot: &mut Option<PreparedRay>, origin: DVec3, dir: DVec3) -> Option<&PreparedRay> {
     if slot.is_none() {
@@ -602,31 +682,36 @@ impl Build<'_> {
                 ((f * BINS as f32) as usize).min(BINS - 1)
             };
             let mut counts = [0usize; BINS];
+            let mut costs = [0.0f32; BINS];
             let mut boxes = [Aabb::EMPTY; BINS];
             for &i in ids {
                 let b = bin_of(self.centroids[i as usize]);
                 counts[b] += 1;
+                costs[b] += self.costs[i as usize];
                 boxes[b] = boxes[b].union(self.bounds[i as usize]);
             }
             // Sweep from the right to get each suffix's box and count, then from the left.
             let mut right_area = [0.0f32; BINS];
             let mut right_count = [0usize; BINS];
-            let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+            let mut right_cost = [0.0f32; BINS];
+            let (mut acc, mut cnt, mut sum) = (Aabb::EMPTY, 0, 0.0f32);
             for b in (1..BINS).rev() {
                 acc = acc.union(boxes[b]);
                 cnt += counts[b];
+                sum += costs[b];
                 right_area[b] = acc.half_area();
                 right_count[b] = cnt;
+                right_cost[b] = sum;
             }
-            let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
+            let (mut acc, mut cnt, mut sum) = (Aabb::EMPTY, 0, 0.0f32);
             for b in 0..BINS - 1 {
                 acc = acc.union(boxes[b]);
                 cnt += counts[b];
+                sum += costs[b];
                 if cnt == 0 || right_count[b + 1] == 0 {
                     continue;
                 }
-                let cost =
-                    acc.half_area() * cnt as f32 + right_area[b + 1] * right_count[b + 1] as f32;
+                let cost = acc.half_area() * sum + right_area[b + 1] * right_cost[b + 1];
                 if best.is_none_or(|(c, _, _)| cost < c) {
                     best = Some((cost, axis, b + 1));
                 }
@@ -634,7 +719,7 @@ impl Build<'_> {
         }
         let (cost, axis, split_bin) = best?;
         let n = end - start;
-        let leaf_cost = n as f32;
+        let leaf_cost: f32 = ids.iter().map(|&i| self.costs[i as usize]).sum();
         let split_cost = TRAVERSAL_COST + cost / bound.half_area().max(f32::MIN_POSITIVE);
         if n <= MAX_LEAF && split_cost >= leaf_cost {
             return None;
@@ -656,55 +741,5 @@ impl Build<'_> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_ray_along_a_face_of_a_single_triangle_box_finds_it() {
-        // The triangle lies in the plane y = 0; a ray in that plane's slab still visits it.
-        let t = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Z);
-        let bvh = Bvh::new(vec![t]);
-        assert!(bvh.bound().is_some());
-        let o = DVec3::new(0.25, 1.0, 0.25);
-        assert_eq!(bvh.nearest(o, DVec3::NEG_Y, 0.0, 10.0), Some(1.0));
-        assert!(!bvh.occluded(o, DVec3::Y, 0.0, 10.0));
-    }
-
-    #[test]
-    fn quadrics_and_triangles_share_the_tree_with_ids_after_the_triangles() {
-        use crate::quadric::QuadricShape;
-        use glam::DMat4;
-        // A unit sphere at z = 5 and a triangle in the plane z = 2 covering (0..1, 0..1).
-        let sphere = Quadric::new(
-            QuadricShape::Sphere {
-                radius: 1.0,
-                phimin: -std::f64::consts::FRAC_PI_2,
-                phimax: std::f64::consts::FRAC_PI_2,
-                thetamax: std::f64::consts::TAU,
-            },
-            DMat4::from_translation(-DVec3::new(0.0, 0.0, 5.0)),
-            (Vec3::new(-1.0, -1.0, 4.0), Vec3::new(1.0, 1.0, 6.0)),
-        );
-        let tri = Triangle::new(
-            Vec3::new(0.0, 0.0, 2.0),
-            Vec3::new(1.0, 0.0, 2.0),
-            Vec3::new(0.0, 1.0, 2.0),
-        );
-        let bvh = Bvh::with_quadrics(vec![tri], vec![7], vec![(sphere, 9)]);
-        assert_eq!(bvh.stats().quadrics, 1);
-        let all = |_: u32| true;
-        // Through the triangle first, then (past it) the sphere's near pole.
-        let o = DVec3::new(0.1, 0.1, 0.0);
-        let h = bvh.nearest_hit(o, DVec3::Z, 0.0, 100.0, &all).unwrap();
-        assert_eq!((h.triangle, h.t, h.uv), (0, 2.0, None));
-        let h = bvh.nearest_hit(o, DVec3::Z, 2.5, 100.0, &all).unwrap();
-        assert_eq!(h.triangle, 1);
-        let want = 5.0 - (1.0f64 - 0.02).sqrt();
-        assert!((h.t - want).abs() < 1e-12 && h.uv.is_some());
-        // Its group is passed over, and `keep` sees its id.
-        let skip = bvh.nearest_hit_except(o, DVec3::Z, (2.5, 100.0), 9, &all);
-        assert!(skip.is_none());
-        assert!(!bvh.occluded_by(o, DVec3::Z, 2.5, 100.0, &|id| id != 1));
-        assert!(bvh.occluded(DVec3::new(-0.5, 0.0, 0.0), DVec3::Z, 0.0, 100.0));
-    }
-}
+#[path = "bvh_tests.rs"]
+mod tests;

@@ -25,6 +25,6 @@ mod slab;
 mod triangle;
 mod wide;
 
-pub use bvh::{Bvh, BvhStats, Hit, NO_GROUP};
+pub use bvh::{Bvh, BvhStats, Hit, TraversalStack, NO_GROUP};
 pub use quadric::{Quadric, QuadricShape};
 pub use triangle::Triangle;

@@ -269,6 +269,12 @@ impl Quadric {
         }
     }
 
+    /// A whole sphere placed by a similarity: its camera-space centre and radius (`None` for
+    /// other quadrics), so a caller can tell which rays cannot meet it.
+    pub fn sphere_ball(&self) -> Option<(DVec3, f64)> {
+        self.ball.map(|(c, r2)| (c, r2.sqrt()))
+    }
+
     /// The nearest hit in `(t_min, t_max)` along `origin + t·dir` (camera space) as `t` and
     /// the surface's `(u, v)` there.
     pub fn intersect(
@@ -291,7 +297,13 @@ impl Quadric {
     ) -> Option<(f64, [f64; 2])> {
         if let (Some((c, r2)), false) = (self.ball, uv) {
             let oc = origin - c;
-            let roots = quadratic(dir.dot(dir), 2.0 * oc.dot(dir), oc.dot(oc) - r2);
+            let (b, c) = (oc.dot(dir), oc.dot(oc) - r2);
+            // Outside and moving away: both roots are ≤ 0 (the quadratic below finds that
+            // too, after a square root and two divisions).
+            if c > 0.0 && b >= 0.0 && t_min >= 0.0 {
+                return None;
+            }
+            let roots = quadratic(dir.dot(dir), 2.0 * b, c);
             return roots
                 .into_iter()
                 .flatten()

@@ -29,7 +29,7 @@
 //! shadow rays see `"Os"`/`"shader"` casters as opaque (SL `transmission()` sees `1 − Os`).
 use crate::trace::analytic::{ray_quadric, Analytic};
 use crate::trace::hit::{hit_vertices, HitVertex};
-use crate::trace::shell::Shell;
+use crate::trace::shell::{SeenFrom, Shell};
 use glam::{DVec3, Vec3};
 use illume_geom::{Grid, Primitive};
 use illume_raytrace::{Bvh, Quadric, Triangle, NO_GROUP};
@@ -221,6 +221,12 @@ impl RayScene {
             // A quadric's surface bulges past its chords by at most the chord distance.
             let bulge = if b.quadric.is_some() { offset } else { 0.0 };
             b.rays.shell = Shell::of(&b.tris).grown(f64::from(bulge) * 2.0);
+            // A closed-form sphere's shell is its own ball: the rays that leave it outwards
+            // (most of those from its points) then pass over it, where the grown ball of its
+            // chords held their origins and they tested the sphere for nothing.
+            if let Some((c, r)) = b.quadric.as_ref().and_then(Quadric::sphere_ball) {
+                b.rays.shell = Shell::ball(c, r);
+            }
             b
         };
         let per_prim: Vec<PrimBuild> = if parallel {
@@ -286,6 +292,12 @@ impl RayScene {
             Some(p) if p.shell.excludes(origin, dir) => prim as u32,
             _ => NO_GROUP,
         }
+    }
+
+    /// The shell of primitive `prim` as seen from `origin`: [`RayScene::skip`] for many
+    /// rays leaving one point (`None`: nothing to pass over).
+    pub fn seen_from(&self, prim: usize, origin: DVec3) -> Option<SeenFrom> {
+        self.prims.get(prim).map(|p| p.shell.seen_from(origin))
     }
 
     /// Whether any shadow caster is partly transparent to shadow rays (`"Os"`/`"shader"`).

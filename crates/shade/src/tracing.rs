@@ -74,6 +74,19 @@ pub trait RayTracer: Send + Sync {
     /// (opaque geometry gives 0).
     fn transmission(&self, from: &RayStart, dir: DVec3, t_max: f64) -> Vec3;
 
+    /// The blocked part of each ray from `from` along the unit `dirs` within `t_max`
+    /// (`1 −` the mean over channels of [`RayTracer::transmission`]), summed in order: what
+    /// `occlusion()` needs of one shaded point. A tracer may override it to share the
+    /// point's set-up among its rays; the sum must stay the same bits.
+    fn blocked(&self, from: &RayStart, dirs: &[DVec3], t_max: f64) -> f64 {
+        let mut blocked = 0.0f64;
+        for &dir in dirs {
+            let through = self.transmission(from, dir, t_max);
+            blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
+        }
+        blocked
+    }
+
     /// `Option "trace" "maxdepth"`: rays at this depth return black.
     fn max_depth(&self) -> u32;
 }

@@ -22,6 +22,7 @@ mod volume;
 use crate::rayscene::RayScene;
 use crate::shading::FrameShading;
 use glam::{DVec3, Vec3};
+use illume_raytrace::NO_GROUP;
 use illume_shade::{RayDifferential, RayStart, RayTracer, TraceHit};
 
 /// Surfaces composited along one `trace()` ray before it counts as opaque.
@@ -35,12 +36,19 @@ impl FrameShading<'_> {
     /// Where a ray from `from` along `dir` starts: pushed off the surface, on the side of `Ng`
     /// the ray leaves through, by the primitive's tessellation bound plus a rounding term.
     fn ray_origin(&self, scene: &RayScene, from: &RayStart, dir: DVec3) -> DVec3 {
+        let (p, ng, offset) = self.origin_frame(scene, from);
+        let side = if ng.dot(dir) < 0.0 { -1.0 } else { 1.0 };
+        p + ng * (side * offset)
+    }
+
+    /// What [`Self::ray_origin`] needs of the start whatever the direction: the point, the
+    /// unit `Ng` and the offset along it.
+    fn origin_frame(&self, scene: &RayScene, from: &RayStart) -> (DVec3, DVec3, f64) {
         let p = from.p.as_dvec3();
         let ng = from.ng.as_dvec3().normalize_or_zero();
-        let side = if ng.dot(dir) < 0.0 { -1.0 } else { 1.0 };
         let offset = f64::from(scene.offset(from.primitive).max(0.0))
             + ROUNDING_OFFSET * p.abs().max_element();
-        p + ng * (side * offset)
+        (p, ng, offset)
     }
 
     /// The step past a hit at `t` before looking for the next surface along the ray.
@@ -148,6 +156,44 @@ impl RayTracer for FrameShading<'_> {
             t_min = Self::past(hit.t);
         }
         through
+    }
+
+    /// One point's `occlusion()` rays: the origin on either side of the surface, the view of
+    /// its own primitive's shell and a traversal stack are set up once for all of them
+    /// (per ray they were a sixth of the rays' time, issue 19). Each ray gives the same
+    /// answer as [`RayTracer::transmission`].
+    fn blocked(&self, from: &RayStart, dirs: &[DVec3], t_max: f64) -> f64 {
+        let scene = self.ray_scene();
+        let mut blocked = 0.0f64;
+        if scene.has_partial_casters() {
+            for &dir in dirs {
+                let through = self.transmission(from, dir, t_max);
+                blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
+            }
+            return blocked;
+        }
+        let opaque = |id: u32| {
+            let p = scene.prim_of(id);
+            p.shadow && !p.shadow_os
+        };
+        // `ray_origin` for rays leaving below (0) and above (1) the side of `Ng`.
+        let (p, ng, offset) = self.origin_frame(scene, from);
+        let origins = [p + ng * -offset, p + ng * offset];
+        let seen = origins.map(|o| scene.seen_from(from.primitive, o));
+        let bvh = scene.bvh();
+        let mut stack = bvh.stack();
+        for &dir in dirs {
+            let side = if ng.dot(dir) < 0.0 { 0 } else { 1 };
+            let skip = match seen[side] {
+                Some(s) if s.excludes(dir) => from.primitive as u32,
+                _ => NO_GROUP,
+            };
+            let range = (0.0, t_max);
+            let hit = bvh.occluded_with(&mut stack, origins[side], dir, range, skip, &opaque);
+            // As `transmission`'s 0 or 1 in every channel.
+            blocked += if hit { 1.0 } else { 0.0 };
+        }
+        blocked
     }
 
     fn max_depth(&self) -> u32 {

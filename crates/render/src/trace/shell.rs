@@ -56,6 +56,29 @@ impl Shell {
         Shell { ball, slab }
     }
 
+    /// A ball of `radius` about `centre` (a closed-form sphere's own: exact, no chords),
+    /// padded by the same relative margin as [`Shell::of`].
+    pub fn ball(centre: DVec3, radius: f64) -> Shell {
+        let pad = MARGIN * (centre.abs().max_element() + radius);
+        Shell {
+            ball: Some((centre, radius + pad)),
+            slab: None,
+        }
+    }
+
+    /// The origin's part of [`Shell::excludes`], for many rays leaving one point.
+    pub fn seen_from(&self, origin: DVec3) -> SeenFrom {
+        let outside_ball = self.ball.and_then(|(c, r)| {
+            let oc = origin - c;
+            (oc.length_squared() > r * r).then_some(oc)
+        });
+        let slab = self.slab.and_then(|(n, mid, half)| {
+            let s = n.dot(origin) - mid;
+            (s > half || s < -half).then_some((n, s > half))
+        });
+        SeenFrom { outside_ball, slab }
+    }
+
     /// The shell grown by `by` (a surface that lies up to `by` off the triangles it was
     /// measured on).
     pub fn grown(self, by: f64) -> Shell {
@@ -78,6 +101,34 @@ impl Shell {
             let s = n.dot(origin) - mid;
             let d = n.dot(dir);
             if (s > half && d >= 0.0) || (s < -half && d <= 0.0) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// A shell as seen from one ray origin ([`Shell::seen_from`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct SeenFrom {
+    /// The origin's offset from the ball's centre, when it lies outside the ball.
+    outside_ball: Option<DVec3>,
+    /// The slab's normal and whether the origin lies beyond its positive face, when it
+    /// lies outside the slab.
+    slab: Option<(DVec3, bool)>,
+}
+
+impl SeenFrom {
+    /// [`Shell::excludes`] for a ray from this origin along `dir` (the same answer).
+    pub fn excludes(&self, dir: DVec3) -> bool {
+        if let Some(oc) = self.outside_ball {
+            if oc.dot(dir) >= 0.0 {
+                return true;
+            }
+        }
+        if let Some((n, above)) = self.slab {
+            let d = n.dot(dir);
+            if (above && d >= 0.0) || (!above && d <= 0.0) {
                 return true;
             }
         }
@@ -126,5 +177,29 @@ mod tests {
         assert!(s.excludes(o, DVec3::new(1.0, 0.0, 0.01).normalize()));
         assert!(!s.excludes(o, DVec3::new(1.0, 0.0, -0.01).normalize()));
         assert!(!s.excludes(DVec3::new(0.0, 0.0, 0.999), DVec3::Z));
+    }
+
+    #[test]
+    fn seen_from_an_origin_the_shell_excludes_the_same_rays() {
+        let shells = [
+            Shell::of(&quad(2.0)),
+            Shell::ball(DVec3::new(0.5, 0.5, 2.0), 0.5),
+        ];
+        for shell in shells {
+            for o in [
+                (0.5, 0.5, 2.001),
+                (0.5, 0.5, 1.999),
+                (2.0, 0.5, 2.0),
+                (0.5, 0.6, 2.0),
+            ] {
+                let o = DVec3::from(o);
+                let seen = shell.seen_from(o);
+                for k in 0..64 {
+                    let a = f64::from(k) * 0.7;
+                    let d = DVec3::new(a.cos() * a.sin(), (2.0 * a).sin(), a.cos());
+                    assert_eq!(seen.excludes(d), shell.excludes(o, d), "{o} {d}");
+                }
+            }
+        }
     }
 }

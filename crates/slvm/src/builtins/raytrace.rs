@@ -83,6 +83,8 @@ impl Exec<'_> {
                 let seed = self.env.seed;
                 // One pattern per sample count (the count is almost always uniform).
                 let pattern = std::cell::RefCell::new(CosinePattern::new(1));
+                // The directions of one point, reused by the next (no allocation per point).
+                let dirs = std::cell::RefCell::new(Vec::new());
                 let v = self.per_point(mask, Vec3::ZERO, |x, i, t| {
                     let s = *samples.at(i);
                     let k = if s.is_finite() {
@@ -94,7 +96,9 @@ impl Exec<'_> {
                         *pattern.borrow_mut() = CosinePattern::new(k);
                     }
                     let pattern = pattern.borrow();
-                    let o = x.occlusion_at(t, i, (*p.at(i), *nn.at(i)), &pattern, maxdist, seed);
+                    let dirs = &mut dirs.borrow_mut();
+                    let at = (*p.at(i), *nn.at(i));
+                    let o = x.occlusion_at(t, i, at, (&pattern, dirs), maxdist, seed);
                     Vec3::splat(o)
                 });
                 let Value::Triple(s) = v else { return None };
@@ -176,13 +180,14 @@ impl Exec<'_> {
 
     /// PRMan's `occlusion()`: the cosine-weighted fraction of the hemisphere about `n` that
     /// geometry within `maxdist` blocks, from the directions of `pattern` shifted by a hash of
-    /// the point (partial opacity counts in part).
+    /// the point (partial opacity counts in part); `dirs` holds them (kept from point to
+    /// point so its storage is reused).
     fn occlusion_at(
         &self,
         t: &dyn RayTracer,
         i: usize,
         (p, n): (Vec3, Vec3),
-        pattern: &CosinePattern,
+        (pattern, dirs): (&CosinePattern, &mut Vec<DVec3>),
         maxdist: f32,
         seed: u32,
     ) -> f32 {
@@ -199,11 +204,9 @@ impl Exec<'_> {
         let stream = OCCLUSION_STREAM ^ seed;
         let shift = illume_shade::stratified_sample(p, 0, 1, stream);
         let jitter = illume_shade::lowbias32((shift.0 * 16_777_216.0) as u32 ^ stream);
-        let mut blocked = 0.0f64;
-        pattern.directions(nd, shift, jitter, |dir| {
-            let through = t.transmission(&start, dir, maxdist);
-            blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
-        });
+        dirs.clear();
+        pattern.directions(nd, shift, jitter, |dir| dirs.push(dir));
+        let blocked = t.blocked(&start, dirs, maxdist);
         (blocked / pattern.len() as f64) as f32
     }
 
