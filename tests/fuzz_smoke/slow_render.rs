@@ -58,3 +58,26 @@ fn refiner_blow_ups_dice_a_bounded_number_of_micropolygons() {
         assert!(mp > 0 && mp < 200_000, "{name}: {mp} micropolygons");
     }
 }
+
+/// The last open `render_rib` blow-ups of issue 23 (fourth runs). `351f4312` (and its
+/// minimised `end_on_min`: an orthographic camera down the axis of a cylinder 7.8·10³⁶ long)
+/// split into millions of pieces, every one of whose bounds, padded by f32 rounding of 10³⁰,
+/// covered the whole frame, so none was ever culled: over 40 s and 2.7 GB. A piece now dices
+/// at the grid size after eight splits whose children all cover the frame
+/// (`refine::MAX_STALLED_SPLITS`). The other three (mutated CSG and latlong scenes) already
+/// rendered in milliseconds before that change: kept here so they stay fixed.
+#[test]
+fn last_open_blow_ups_dice_a_bounded_number_of_micropolygons() {
+    for name in [
+        "render_rib_blowup_351f4312.rib",
+        "render_rib_blowup_end_on_min.rib",
+        "render_rib_blowup_3fee5e23.rib",
+        "render_rib_blowup_6cb1735c.rib",
+        "render_rib_blowup_c8a56e60.rib",
+    ] {
+        let mp = micropolygons(name);
+        // 1,100 to 66,000 after the fix (351f4312: 256 pieces of 256 at the stall limit);
+        // before, an abort out of memory after tens of millions.
+        assert!(mp > 0 && mp < 200_000, "{name}: {mp} micropolygons");
+    }
+}

@@ -31,6 +31,17 @@ const MAX_SPLIT_DEPTH: u32 = 48;
 const MIN_OFF_SCREEN_SPLIT: usize = 16;
 /// Vertices per side of the coarse test dice used to measure raster size.
 const TEST_DICE: usize = 5;
+/// How many too-big splits whose children all still cover the whole frame
+/// ([`Refiner::all_cover_frame`]) a piece may come from before it is diced at the grid size
+/// instead (`fit_grid`), as at the deepest split. Such a split culls nothing and uncovers no
+/// pixel; a piece whose bound is too loose for its size never stops making them (a cylinder
+/// 10³⁶ long seen end-on by an orthographic camera: the bound's f32 slack of 10³⁰ puts every
+/// piece over the whole frame, and the refiner split it into millions of pieces, minutes and
+/// gigabytes for an 8×8 frame: fuzz finding `render_rib_slow_351f4312`). The children of a
+/// split along a surface meet only along their seam, so both hold the frame only where a
+/// strongly curved piece's boxes overlap over a tiny frame: rarely, and not eight times on one
+/// path.
+const MAX_STALLED_SPLITS: u32 = 8;
 
 pub(crate) enum PrimRef<'a> {
     Borrowed(&'a dyn Primitive),
@@ -82,6 +93,9 @@ pub(crate) struct Item<'a> {
     pub prim_index: usize,
     pub eye_splits: u32,
     pub depth: u32,
+    /// Too-big splits on the way here whose children all covered the whole frame
+    /// ([`MAX_STALLED_SPLITS`]).
+    pub stalled: u32,
     /// See [`Piece::path`].
     pub path: Vec<u32>,
 }
@@ -95,6 +109,7 @@ impl<'a> Item<'a> {
             prim_index,
             eye_splits: 0,
             depth: 0,
+            stalled: 0,
             path: Vec::new(),
         }
     }
@@ -103,24 +118,28 @@ impl<'a> Item<'a> {
     /// `displacementbound` padding and the eye plane's depth ([`eye_split_choice`]).
     fn split(self, eye_split: Option<(f32, f64)>) -> impl Iterator<Item = Item<'a>> {
         let parts = split_keys(&self.prim, &self.later, eye_split);
-        self.children(parts, eye_split.is_some())
+        self.children(parts, eye_split.is_some(), false)
     }
 
     /// The items of an already made split of this one (`parts` from [`split_keys`]), each
-    /// one level deeper; `eye_split` says whether it was an eye split.
+    /// one level deeper; `eye_split` says whether it was an eye split, `stalled` whether all
+    /// its children cover the whole frame.
     fn children(
         self,
         parts: Vec<(PrimRef<'a>, Vec<PrimRef<'a>>)>,
         eye_split: bool,
+        stalled: bool,
     ) -> impl Iterator<Item = Item<'a>> {
         let Item {
             prim_index,
             eye_splits,
             depth,
+            stalled: stalled_before,
             path,
             ..
         } = self;
         let eye_splits = eye_splits + u32::from(eye_split);
+        let stalled = stalled_before + u32::from(stalled);
         parts
             .into_iter()
             .enumerate()
@@ -133,6 +152,7 @@ impl<'a> Item<'a> {
                     prim_index,
                     eye_splits,
                     depth: depth + 1,
+                    stalled,
                     path,
                 }
             })
@@ -340,17 +360,26 @@ impl Refiner<'_> {
                 .then(|| split_keys(&item.prim, &item.later, None))
                 .filter(|parts| split_shrinks(item.prim.get(), parts));
         if (over_size || off_screen_split.is_some()) && item.depth + 1 < MAX_SPLIT_DEPTH {
-            let parts =
-                off_screen_split.unwrap_or_else(|| split_keys(&item.prim, &item.later, None));
-            for child in item.children(parts, false) {
-                self.refine(child, attrs, defer, out);
+            let (parts, stalled) = match off_screen_split {
+                Some(parts) => (parts, false),
+                None => {
+                    let parts = split_keys(&item.prim, &item.later, None);
+                    let stalled = self.all_cover_frame(&parts);
+                    (parts, stalled)
+                }
+            };
+            if !stalled || item.stalled < MAX_STALLED_SPLITS {
+                for child in item.children(parts, false, stalled) {
+                    self.refine(child, attrs, defer, out);
+                }
+                return;
             }
-            return;
         }
         if over_size {
             // Still too big at the deepest split (a piece whose bound stops shrinking in f32,
-            // such as a surface reaching 1e24): dice it coarser to fit the grid size rather
-            // than at up to 4096² micropolygons (fuzz finding render_rib_oom_ef9010ac: gigabytes).
+            // such as a surface reaching 1e24), or after too many splits that shrank nothing
+            // on screen: dice it coarser to fit the grid size rather than at up to 4096²
+            // micropolygons (fuzz finding render_rib_oom_ef9010ac: gigabytes).
             (nu, nv) = fit_grid(nu, nv, self.grid_size);
         }
         out.pieces.push(Piece {
@@ -378,6 +407,20 @@ impl Refiner<'_> {
         let ih = inside(raster[2], raster[3], r[2], r[3]);
         let (w, h) = (raster[1] - raster[0], raster[3] - raster[2]);
         (iw + 1.0) * (ih + 1.0) < 0.5 * (w + 1.0) * (h + 1.0)
+    }
+
+    /// Whether every child of a split (`parts` from [`split_keys`]) still has a raster bound,
+    /// over every motion key, that holds the whole frame's region: a split that can neither
+    /// cull a part nor uncover any pixel ([`MAX_STALLED_SPLITS`]).
+    fn all_cover_frame(&self, parts: &[(PrimRef, Vec<PrimRef>)]) -> bool {
+        let f = &self.frame_region;
+        parts.iter().all(|(child, later)| {
+            let b = later
+                .iter()
+                .fold(child.get().bound(), |b, k| b.union(k.get().bound()));
+            let r = self.corner_raster(&b);
+            r[0] <= f[0] && r[1] >= f[1] && r[2] <= f[2] && r[3] >= f[3]
+        })
     }
 
     /// Raster x0 x1 y0 y1 of the box's corners in front of the eye.
