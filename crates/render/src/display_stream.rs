@@ -126,15 +126,27 @@ impl RowSink for DisplayStream<'_> {
 
     fn rows(&mut self, rows: PixelRows) {
         let r = band(&self.layout, rows);
-        for d in &mut self.displays {
-            let Ok((plan, Output::Rows(Some(out)))) = d else {
-                continue;
-            };
-            if let Err(e) = plan
-                .image(&r)
-                .and_then(|image| out.write_rows(&image).map_err(DisplayError::from))
-            {
-                *d = Err(e);
+        let streamed = |d: &Result<(DisplayPlan, Output), DisplayError>| {
+            matches!(d, Ok((_, Output::Rows(Some(_)))))
+        };
+        if self.displays.iter().any(streamed) {
+            // A few rows at a time: each display's channels and quantized bytes are then a few
+            // rows, not the band's (a 5120-pixel band of 16 rows is 1.3 MB of float channels
+            // and as much again quantized). The files are the same bytes: strips are cut from
+            // the rows received, and dither is keyed on full-frame pixels.
+            for y in (0..r.height).step_by(ROWS_PER_WRITE as usize) {
+                let chunk = rows_of(&r, y, ROWS_PER_WRITE.min(r.height - y));
+                for d in &mut self.displays {
+                    let Ok((plan, Output::Rows(Some(out)))) = d else {
+                        continue;
+                    };
+                    if let Err(e) = plan
+                        .image(&chunk)
+                        .and_then(|image| out.write_rows(&image).map_err(DisplayError::from))
+                    {
+                        *d = Err(e);
+                    }
+                }
             }
         }
         if let Some(whole) = &mut self.whole {
@@ -148,6 +160,31 @@ impl RowSink for DisplayStream<'_> {
                 aov: r.aov,
             });
         }
+    }
+}
+
+/// Rows a streamed display converts and writes at once (see [`DisplayStream::rows`]).
+const ROWS_PER_WRITE: u32 = 4;
+
+/// Rows `y..y + n` of the band `r` (a copy).
+fn rows_of(r: &Rendered, y: u32, n: u32) -> Rendered {
+    let (w, s) = (r.width as usize, r.aov_layout.stride);
+    let px = y as usize * w..(y + n) as usize * w;
+    Rendered {
+        x0: r.x0,
+        y0: r.y0 + y,
+        width: r.width,
+        height: n,
+        rgba: r.rgba[px.start * 4..px.end * 4].to_vec(),
+        z: r.z[px.clone()].to_vec(),
+        aov_layout: r.aov_layout.clone(),
+        aov: r
+            .aov
+            .get(px.start * s..px.end * s)
+            .unwrap_or_default()
+            .to_vec(),
+        stats: Default::default(),
+        warnings: Vec::new(),
     }
 }
 

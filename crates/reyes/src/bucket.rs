@@ -5,7 +5,7 @@ use crate::aov::AovLayout;
 use crate::csg::{SolidResolver, NO_SOLID};
 use crate::dice::{dice_and_shade, ShadedGrid};
 use crate::displacement_bound::Overflow;
-use crate::film::{Film, PixelBlock};
+use crate::film::{blank_rows, paste, Film, PixelBlock};
 use crate::hider::{ns, Counters};
 use crate::lens::Lens;
 use crate::motion::sample_moving_grid;
@@ -101,6 +101,13 @@ impl BucketLayout {
         by0.min(self.count[1] - 1)
     }
 
+    /// A raster y above which no sample of band `by` (or of a later band) lies: its first pixel
+    /// row less the filter margin (a bucket's samples reach that far out) and a pixel to spare.
+    pub fn samples_top(&self, by: usize) -> f32 {
+        let (_, [y0, _]) = self.band(by);
+        y0 as f32 - self.margin - 1.0
+    }
+
     /// Per bucket of band `band`, the pieces (of `pieces`, in refine order) whose padded raster
     /// bound overlaps it, nearest first.
     pub fn band_lists(&self, band: usize, pieces: &[Piece]) -> Vec<Vec<usize>> {
@@ -187,6 +194,19 @@ impl GridSlot {
             let _ = self.overflow.set(o);
         }
         g
+    }
+
+    /// Drops the rows of the grid (if it is held) that no bucket whose samples lie at or below
+    /// raster `y` samples ([`ShadedGrid::trim_above`]). Called between bands, when no bucket
+    /// holds the grid.
+    pub(crate) fn trim_above(&self, y: f32) {
+        if self.remaining.load(Relaxed) == 0 {
+            return;
+        }
+        let mut g = self.grid.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(grid) = g.as_mut().and_then(|g| g.as_mut()).and_then(Arc::get_mut) {
+            grid.trim_above(y);
+        }
     }
 
     /// One overlapping bucket is done; the last one frees the grid.
@@ -293,32 +313,39 @@ impl BandRenderer<'_> {
     ) -> crate::row_sink::PixelRows {
         let (buckets, rows) = self.layout.band(by);
         let first = buckets.start;
-        let blocks = buckets
-            .into_par_iter()
-            .map(|b| {
-                let block = render_bucket(
-                    self.frame,
-                    self.shader,
-                    pieces,
-                    grids,
-                    &lists[b - first],
-                    self.layout.rect(b),
-                    self.film,
-                    self.setup,
-                    self.lens,
-                    self.counters,
-                    self.aov,
-                );
-                let n = self.done.fetch_add(1, Relaxed) + 1;
-                if let Some(p) = self.progress {
-                    p(n, self.total.load(Relaxed));
-                }
-                block
-            })
-            .collect();
         let [cx0, cx1, _, _] = self.layout.crop;
-        self.film
-            .print_rows([cx0, cx1], rows, blocks, self.aov.stride)
+        let stride = self.aov.stride;
+        // Each bucket pastes its pixels as it finishes; every pixel belongs to one bucket, so
+        // the rows do not depend on the order buckets finish in.
+        let out = Mutex::new(blank_rows([cx0, cx1], rows, stride));
+        buckets.into_par_iter().for_each(|b| {
+            let block = render_bucket(
+                self.frame,
+                self.shader,
+                pieces,
+                grids,
+                &lists[b - first],
+                self.layout.rect(b),
+                self.film,
+                self.setup,
+                self.lens,
+                self.counters,
+                self.aov,
+            );
+            paste(
+                &mut out.lock().unwrap_or_else(|e| e.into_inner()),
+                &block,
+                stride,
+            );
+            drop(block);
+            let n = self.done.fetch_add(1, Relaxed) + 1;
+            if let Some(p) = self.progress {
+                p(n, self.total.load(Relaxed));
+            }
+        });
+        let mut out = out.into_inner().unwrap_or_else(|e| e.into_inner());
+        self.film.expose_rows(&mut out);
+        out
     }
 }
 

@@ -12,6 +12,7 @@ use crate::shader::GridShader;
 use crate::still_grid::GridBands;
 use glam::Vec3;
 use illume_ri::Frame;
+use std::ops::Range;
 use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
@@ -20,14 +21,21 @@ use std::time::Instant;
 pub(crate) struct ShadedGrid {
     pub(crate) nu: usize,
     pub(crate) nv: usize,
-    /// Raster x, y and camera z per vertex.
-    pub(crate) pos: Vec<Vec3>,
+    /// The rows of micropolygons still held: all of them when shaded, fewer once the buckets
+    /// above have sampled the grid ([`ShadedGrid::trim_above`]). `pos`, `ci`, `oi` and
+    /// `backface` hold only these rows (and their vertices); indices stay the whole grid's.
+    held: Range<usize>,
+    /// Raster x, y and camera z per vertex (of the held rows).
+    pos: Vec<Vec3>,
+    /// Colour and opacity per vertex (smooth shading) or per micropolygon (flat), of the held
+    /// rows; one value when every vertex (micropolygon) has the same bits (an opaque surface's
+    /// opacity): one fewer array per grid held between bands.
     ci: Vec<Vec3>,
     oi: Vec<Vec3>,
     /// Per-vertex AOV records ([`crate::AovLayout::stride`] floats each; empty without AOVs).
     pub(crate) aov: Vec<f32>,
-    /// Per micropolygon: culled as a back face (Sides 1).
-    pub(crate) backface: Vec<bool>,
+    /// Per micropolygon (of the held rows): culled as a back face (Sides 1).
+    backface: Vec<bool>,
     /// The primitive solid this grid bounds ([`NO_SOLID`] for none).
     pub(crate) solid: u32,
     /// Whether a micropolygon triangle wound counter-clockwise in raster space faces the eye
@@ -66,19 +74,77 @@ impl ShadedGrid {
         [bottom, right, top, left]
     }
 
+    /// Raster x, y and camera z of grid vertex `k` (of a held row).
+    #[inline]
+    pub(crate) fn vertex(&self, k: usize) -> Vec3 {
+        self.pos[k - self.held.start * self.nu]
+    }
+
+    /// Whether micropolygon `m` (of a held row) is culled as a back face.
+    #[inline]
+    pub(crate) fn backface(&self, m: usize) -> bool {
+        self.backface[m - self.held.start * (self.nu - 1)]
+    }
+
+    /// Whether the held rows' vertices are all there (a shader may hand back fewer points
+    /// than the grid has: such a grid is not sampled).
+    pub(crate) fn complete(&self) -> bool {
+        self.held.is_empty() || self.pos.len() >= (self.held.len() + 1) * self.nu
+    }
+
     /// Colour and opacity at barycentric weights `w` of grid vertices `idx`, or the constant
     /// of the micropolygon whose first vertex is `first` when shading is flat.
     pub(crate) fn shaded_at(&self, idx: [usize; 3], w: [f64; 3], first: usize) -> (Vec3, Vec3) {
         if self.smooth {
             let [a, b, cc] = w.map(|x| x as f32);
+            let base = self.held.start * self.nu;
+            let (c, o) = (
+                idx.map(|k| held_value(&self.ci, k, base)),
+                idx.map(|k| held_value(&self.oi, k, base)),
+            );
             (
-                self.ci[idx[0]] * a + self.ci[idx[1]] * b + self.ci[idx[2]] * cc,
-                self.oi[idx[0]] * a + self.oi[idx[1]] * b + self.oi[idx[2]] * cc,
+                c[0] * a + c[1] * b + c[2] * cc,
+                o[0] * a + o[1] * b + o[2] * cc,
             )
         } else {
             let m = micropolygon_of(first, self.nu);
-            (self.ci[m], self.oi[m])
+            let base = self.held.start * (self.nu - 1);
+            (held_value(&self.ci, m, base), held_value(&self.oi, m, base))
         }
+    }
+
+    /// Drops the rows of micropolygons no bucket still to come samples: those whose raster
+    /// bound, grown by the grid's reach, ends above `y` (every later bucket's samples lie at
+    /// or below `y`, so the sampler's own bound test would skip them there). Why: a grid that
+    /// reaches the next bucket row is held until that row is done, and a frame twice as wide
+    /// holds twice as many; most of such a grid lies in the row already rendered. Moving grids
+    /// and grids with output variables are kept whole. The image is the same bits.
+    pub(crate) fn trim_above(&mut self, y: f32) {
+        if self.motion.is_some() || !self.aov.is_empty() || !self.complete() {
+            return;
+        }
+        let keep = self.bands.rows_reaching(y, self.held.clone());
+        if keep == self.held {
+            return;
+        }
+        let nu = self.nu;
+        let (old, new) = (self.held.start, keep.start);
+        let verts = |v: &[Vec3]| match keep.is_empty() {
+            true => Vec::new(),
+            false => v[(new - old) * nu..(keep.end + 1 - old) * nu].to_vec(),
+        };
+        let mps = |v: &[Vec3]| v[(new - old) * (nu - 1)..(keep.end - old) * (nu - 1)].to_vec();
+        let values = |v: &Vec<Vec3>| match (v.len(), self.smooth) {
+            (1, _) => v.clone(),
+            (_, true) => verts(v),
+            (_, false) => mps(v),
+        };
+        self.ci = values(&self.ci);
+        self.oi = values(&self.oi);
+        self.pos = verts(&self.pos);
+        self.backface = self.backface[(new - old) * (nu - 1)..(keep.end - old) * (nu - 1)].to_vec();
+        self.bands.drop_rows_outside(keep.clone());
+        self.held = keep;
     }
 
     /// Appends the AOV record at the hit to `store` (as [`ShadedGrid::shaded_at`] weighs
@@ -91,13 +157,38 @@ impl ShadedGrid {
         w: [f64; 3],
         first: usize,
     ) -> bool {
-        if stride == 0 || self.aov.len() != self.ci.len() * stride {
+        let records = if self.smooth {
+            self.nu * self.nv
+        } else {
+            (self.nu - 1) * (self.nv - 1)
+        };
+        if stride == 0 || self.held != (0..self.nv - 1) || self.aov.len() != records * stride {
             return false;
         }
         let smooth = self.smooth.then(|| (idx, w.map(|x| x as f32)));
         let record = micropolygon_of(first, self.nu);
         crate::aov::push_record(store, &self.aov, stride, smooth, record);
         true
+    }
+}
+
+/// Value `k` (a whole-grid index) of held per-vertex or per-micropolygon values starting at
+/// index `base`, or the one value of a uniform array.
+#[inline]
+fn held_value(v: &[Vec3], k: usize, base: usize) -> Vec3 {
+    if v.len() == 1 {
+        v[0]
+    } else {
+        v[k - base]
+    }
+}
+
+/// `v` as one value when all its values have the same bits (see `ShadedGrid::oi`).
+fn uniform_or_all(v: Vec<Vec3>) -> Vec<Vec3> {
+    let bits = |c: &Vec3| c.to_array().map(f32::to_bits);
+    match v.first() {
+        Some(first) if v.len() > 1 && v.iter().all(|c| bits(c) == bits(first)) => vec![*first],
+        _ => v,
     }
 }
 
@@ -255,10 +346,11 @@ pub(crate) fn dice_and_shade(
     Some(Arc::new(ShadedGrid {
         nu,
         nv,
+        held: 0..nv - 1,
+        ci: uniform_or_all(ci),
+        oi: uniform_or_all(oi),
         bands,
         pos,
-        ci,
-        oi,
         aov,
         backface,
         solid,

@@ -216,43 +216,10 @@ impl Film {
         }
     }
 
-    /// Pastes the blocks of one band of buckets into whole rows `y0..y1` of the crop window
-    /// whose columns are `x0..x1`, and exposes the colour: premultiplied RGBA, depth and the
-    /// AOV records (`stride` floats per pixel, not exposed), top row first.
-    pub fn print_rows(
-        &self,
-        [x0, x1]: [u32; 2],
-        [y0, y1]: [u32; 2],
-        blocks: Vec<PixelBlock>,
-        stride: usize,
-    ) -> PixelRows {
-        let (width, height) = (x1 - x0, y1 - y0);
-        let mut rgba = vec![0.0f32; (width * height * 4) as usize];
-        let mut z = vec![f32::MAX; (width * height) as usize];
-        let mut aov = vec![0.0f32; (width * height) as usize * stride];
-        for b in blocks {
-            let [bx0, bx1, by0, _] = b.rect;
-            let bwid = bx1 - bx0;
-            for (k, (pc, pz)) in b.rgba.iter().zip(&b.z).enumerate() {
-                let (x, y) = (bx0 - x0 + k as u32 % bwid, by0 - y0 + k as u32 / bwid);
-                let o = (y * width + x) as usize;
-                rgba[o * 4..o * 4 + 4].copy_from_slice(pc);
-                z[o] = *pz;
-                if let Some(rec) = b.aov.get(k * stride..(k + 1) * stride) {
-                    aov[o * stride..(o + 1) * stride].copy_from_slice(rec);
-                }
-            }
-        }
-        self.expose(&mut rgba);
-        PixelRows {
-            x0,
-            y0,
-            width,
-            height,
-            rgba,
-            z,
-            aov,
-        }
+    /// Exposes one band's rows once every bucket's block is pasted in ([`blank_rows`],
+    /// [`paste`]): premultiplied RGBA, depth and AOV records (not exposed), top row first.
+    pub fn expose_rows(&self, rows: &mut PixelRows) {
+        self.expose(&mut rows.rgba);
     }
 
     /// Exposure (RI Spec 3.2 `RiExposure`): c' = (gain·c)^(1/gamma) on colour, not alpha.
@@ -264,6 +231,38 @@ impl Film {
                     *c = (*c * gain).max(0.0).powf(1.0 / gamma);
                 }
             }
+        }
+    }
+}
+
+/// Rows `y0..y1` of columns `x0..x1` before any block is pasted in: black, depth `f32::MAX`.
+pub(crate) fn blank_rows([x0, x1]: [u32; 2], [y0, y1]: [u32; 2], stride: usize) -> PixelRows {
+    let (width, height) = (x1 - x0, y1 - y0);
+    PixelRows {
+        x0,
+        y0,
+        width,
+        height,
+        rgba: vec![0.0f32; (width * height * 4) as usize],
+        z: vec![f32::MAX; (width * height) as usize],
+        aov: vec![0.0f32; (width * height) as usize * stride],
+    }
+}
+
+/// Copies one bucket's developed pixels into the rows (`stride` AOV floats per pixel). A
+/// bucket pastes its block as soon as it is done, so a band's blocks are never all held
+/// beside its rows (at 5120 pixels wide, 1.6 MB).
+pub(crate) fn paste(rows: &mut PixelRows, b: &PixelBlock, stride: usize) {
+    let (x0, y0, width) = (rows.x0, rows.y0, rows.width);
+    let [bx0, bx1, by0, _] = b.rect;
+    let bwid = bx1 - bx0;
+    for (k, (pc, pz)) in b.rgba.iter().zip(&b.z).enumerate() {
+        let (x, y) = (bx0 - x0 + k as u32 % bwid, by0 - y0 + k as u32 / bwid);
+        let o = (y * width + x) as usize;
+        rows.rgba[o * 4..o * 4 + 4].copy_from_slice(pc);
+        rows.z[o] = *pz;
+        if let Some(rec) = b.aov.get(k * stride..(k + 1) * stride) {
+            rows.aov[o * stride..(o + 1) * stride].copy_from_slice(rec);
         }
     }
 }
@@ -430,7 +429,9 @@ mod tests {
             z: vec![3.0],
             aov: Vec::new(),
         };
-        let rows = film.print_rows([0, 1], [0, 1], vec![block], 0);
+        let mut rows = blank_rows([0, 1], [0, 1], 0);
+        paste(&mut rows, &block, 0);
+        film.expose_rows(&mut rows);
         for (a, b) in rows.rgba.iter().zip([0.5, 1.0, 0.0, 0.5]) {
             assert!((a - b).abs() < 1e-6, "{:?}", rows.rgba);
         }

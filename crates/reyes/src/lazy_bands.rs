@@ -183,6 +183,12 @@ impl<'f, 'l> LazyBands<'f, 'l> {
                 return Err(Overflowed);
             }
             self.retire(by);
+            // The grids that reach the next band are held for it: keep only their rows that
+            // band's buckets (or later ones) may sample.
+            if by + 1 < self.layout.band_count() {
+                let y = self.layout.samples_top(by + 1);
+                self.grids.par_iter().for_each(|g| g.trim_above(y));
+            }
         }
         Ok(self.report)
     }

@@ -278,7 +278,7 @@ fn micropolygon_setup(
     paths: &mut Vec<StratumPath>,
 ) -> Option<MicropolygonSetup> {
     let nu = g.nu;
-    if g.backface[j * (nu - 1) + i] {
+    if g.backface(j * (nu - 1) + i) {
         return None;
     }
     let a = j * nu + i;

@@ -14,6 +14,7 @@
 use crate::dice::ShadedGrid;
 use crate::raster_triangle::{split_quad, RasterTriangle, TriangleEdges};
 use crate::sample_buffer::{Hit, SampleBuffer};
+use std::ops::Range;
 
 /// A raster box `[x0, x1, y0, y1]` (empty: `[∞, −∞, ∞, −∞]`).
 type RasterBox = [f32; 4];
@@ -87,6 +88,29 @@ impl GridBands {
             grow: seam.iter().flatten().copied().fold(0.0f64, f64::max) as f32,
         }
     }
+
+    /// The rows of `held` from the first to the last whose bound, grown by the grid's reach,
+    /// ends at or below raster `y` (none: the empty range at `held`'s end): the rows a bucket whose samples lie at or below `y` may
+    /// sample ([`SampleBuffer::box_may_reach`] fails for the others, whatever its columns).
+    pub fn rows_reaching(&self, y: f32, held: Range<usize>) -> Range<usize> {
+        let reaches = |j: &usize| !(self.rows[*j][3] + self.grow < y);
+        let first = held.clone().find(reaches);
+        let last = held.clone().rev().find(reaches);
+        match (first, last) {
+            (Some(a), Some(b)) => a..b + 1,
+            _ => held.end..held.end,
+        }
+    }
+
+    /// Forgets the bounds of the rows outside `keep` (they are no longer held): the sampler
+    /// then never looks at them.
+    pub fn drop_rows_outside(&mut self, keep: Range<usize>) {
+        for (j, row) in self.rows.iter_mut().enumerate() {
+            if !keep.contains(&j) {
+                *row = EMPTY;
+            }
+        }
+    }
 }
 
 impl SampleBuffer {
@@ -94,7 +118,7 @@ impl SampleBuffer {
     pub fn sample_still_grid(&mut self, g: &ShadedGrid, id: usize) -> u64 {
         let (nu, nv) = (g.nu, g.nv);
         let bands = &g.bands;
-        if nu < 2 || nv < 2 || g.pos.len() < nu * nv || bands.rows.len() + 1 != nv {
+        if nu < 2 || nv < 2 || !g.complete() || bands.rows.len() + 1 != nv {
             return 0;
         }
         let col_reaches: Vec<bool> = (bands.cols.iter())
@@ -115,26 +139,25 @@ impl SampleBuffer {
     /// Samples micropolygon `(i, j)` of a still grid (piece `id`); returns the samples hit.
     fn sample_still_micropolygon(&mut self, g: &ShadedGrid, id: usize, i: usize, j: usize) -> u64 {
         let m = j * (g.nu - 1) + i;
-        if g.backface[m] {
+        if g.backface(m) {
             return 0;
         }
         let a = j * g.nu + i;
         let quad = [a, a + 1, a + g.nu + 1, a + g.nu];
-        if quad.iter().any(|&k| g.pos[k].z.is_nan()) {
+        let pos = quad.map(|k| g.vertex(k));
+        if pos.iter().any(|p| p.z.is_nan()) {
             return 0;
         }
         let reach = g.border_reach(i, j);
         let grow = reach.iter().copied().fold(0.0f64, f64::max) as f32;
-        let bound = quad
-            .iter()
-            .fold(EMPTY, |b, &k| add(b, g.pos[k].x, g.pos[k].y));
+        let bound = pos.iter().fold(EMPTY, |b, p| add(b, p.x, p.y));
         if !self.box_may_reach(bound, grow) {
             return 0;
         }
         let order = ((id as u64) << 32) | m as u64;
         let mut hits = 0;
         for (tri, reach) in split_quad(quad, reach) {
-            let v = tri.map(|k| g.pos[k].as_dvec3());
+            let v = tri.map(|k| g.vertex(k).as_dvec3());
             if let Some(t) = RasterTriangle::new(v, tri, reach) {
                 hits += self.sample_triangle(g, &t, a, order);
             }
