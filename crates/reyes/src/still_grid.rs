@@ -14,6 +14,7 @@
 use crate::dice::ShadedGrid;
 use crate::raster_triangle::{split_quad, RasterTriangle, TriangleEdges};
 use crate::sample_buffer::{Hit, SampleBuffer};
+use std::cmp::Ordering::Less;
 use std::ops::Range;
 
 /// A raster box `[x0, x1, y0, y1]` (empty: `[∞, −∞, ∞, −∞]`).
@@ -90,10 +91,11 @@ impl GridBands {
     }
 
     /// The rows of `held` from the first to the last whose bound, grown by the grid's reach,
-    /// ends at or below raster `y` (none: the empty range at `held`'s end): the rows a bucket whose samples lie at or below `y` may
-    /// sample ([`SampleBuffer::box_may_reach`] fails for the others, whatever its columns).
+    /// extends to raster `y` or below it (none: the empty range at `held`'s end): the rows a
+    /// bucket whose samples lie at or below `y` may sample ([`SampleBuffer::box_may_reach`]
+    /// fails for the others, whatever its columns). A NaN bound counts as reaching.
     pub fn rows_reaching(&self, y: f32, held: Range<usize>) -> Range<usize> {
-        let reaches = |j: &usize| !(self.rows[*j][3] + self.grow < y);
+        let reaches = |j: &usize| (self.rows[*j][3] + self.grow).partial_cmp(&y) != Some(Less);
         let first = held.clone().find(reaches);
         let last = held.clone().rev().find(reaches);
         match (first, last) {
