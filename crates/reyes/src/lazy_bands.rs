@@ -183,12 +183,6 @@ impl<'f, 'l> LazyBands<'f, 'l> {
                 return Err(Overflowed);
             }
             self.retire(by);
-            // The grids that reach the next band are held for it: keep only their rows that
-            // band's buckets (or later ones) may sample.
-            if by + 1 < self.layout.band_count() {
-                let y = self.layout.samples_top(by + 1);
-                self.grids.par_iter().for_each(|g| g.trim_above(y));
-            }
         }
         Ok(self.report)
     }
@@ -223,7 +217,8 @@ impl<'f, 'l> LazyBands<'f, 'l> {
                 self.report.late_pieces += 1;
             }
             let buckets = (bx1 - bx0 + 1) * (by1 - by0.max(by) + 1);
-            joining.push((p, GridSlot::new(buckets)));
+            // Trimmed as each bucket row is done with it (`GridSlot::release`).
+            joining.push((p, GridSlot::in_rows(buckets, bx1 - bx0 + 1)));
         }
         self.join(joining);
         let live = (self.pieces.len() + self.waiting_count) as u64;
