@@ -68,7 +68,10 @@ impl Factor {
             return 0.0;
         }
         let t = a * self.scale;
-        let i = (t as usize).min(self.values.len() - 2);
+        // `t` is in `[0, n]`: an i32 cast (saturating like any `as`, so any `t` is safe) takes
+        // fewer instructions than a usize one; this line was 2.7% of the instructions of
+        // `rib/bench/spotlight.rib` (callgrind), 1.1% fewer in all with the i32 cast.
+        let i = (t as i32 as usize).min(self.values.len() - 2);
         let f = t - i as f32;
         let (v0, v1) = (self.values[i], self.values[i + 1]);
         v0 + f * (v1 - v0)
