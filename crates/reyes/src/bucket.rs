@@ -12,7 +12,7 @@ use crate::motion::sample_moving_grid;
 use crate::refine::Piece;
 use crate::sample_buffer::{SampleBuffer, SampleSetup};
 use crate::shader::GridShader;
-use crate::visible::composite;
+use crate::visible::{composite, empty_sample};
 use illume_ri::Frame;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
@@ -256,6 +256,17 @@ pub(crate) fn render_bucket(
     aov: &AovLayout,
     next_top: Option<f32>,
 ) -> PixelBlock {
+    // No piece reaches the bucket: its pixels are what empty samples develop to, made without
+    // the samples where that is the same bits (`Film::develop_empty`); the imager still runs.
+    if list.is_empty() && aov.stride == 0 {
+        let t = Instant::now();
+        let n_per = (setup.spp[0] * setup.spp[1]) as usize;
+        if let Some(mut block) = film.develop_empty(rect, n_per, empty_sample()) {
+            shader.image(&mut block);
+            counters.filter_ns.fetch_add(ns(t), Relaxed);
+            return block;
+        }
+    }
     // Samples as far out as the widest filter reaches (an AOV display may filter wider).
     let mut buf = SampleBuffer::new(rect, aov.reach(film.filter.radius()), setup);
     let t_sample = Instant::now();

@@ -77,6 +77,12 @@ pub(crate) fn composite(
     (composited, aov_out)
 }
 
+/// What [`composite`] makes of a sample no visible point reached (nothing opaque: an
+/// infinite `opaque_z`), for a bucket no piece reaches (`bucket::render_bucket`).
+pub(crate) fn empty_sample() -> Composited {
+    composite_sample(&mut Vec::new(), f32::INFINITY, None, &|_| 0, None)
+}
+
 /// Sorts one sample's visible points (depth, then order), drops the solid hits that are not
 /// on a composite surface, and composites front to back until the sample is opaque.
 fn composite_sample(
