@@ -62,12 +62,17 @@ pub(crate) fn composite(
 ) -> (Vec<Composited>, Vec<f32>) {
     let stride = aov.map_or(0, |(l, _)| l.stride);
     let mut aov_out = vec![0.0f32; lists.len() * stride];
-    // One sample's points at a time, in one reused buffer.
+    // One sample's points at a time, in one reused buffer; a sample without points is the
+    // same for all (no solid or AOV record changes it), made once.
     let mut list = Vec::new();
+    let empty = empty_sample();
     let composited = opaque_z
         .iter()
         .enumerate()
         .map(|(s, &oz)| {
+            if lists.is_empty_at(s) {
+                return empty;
+            }
             lists.collect(s, &mut list);
             let acc = &mut aov_out[s * stride..(s + 1) * stride];
             let aov = aov.map(|(layout, store)| (layout, store, acc));

@@ -84,6 +84,11 @@ impl VisibleLists {
         self.push(s, vp);
     }
 
+    /// Whether sample `s` has no point.
+    pub fn is_empty_at(&self, s: usize) -> bool {
+        self.head[s] == END
+    }
+
     /// Sample `s`'s points in the order they came, into `out` (cleared first).
     pub fn collect(&self, s: usize, out: &mut Vec<VisiblePoint>) {
         out.clear();
