@@ -366,6 +366,11 @@ fn sample_moving_micropolygon(
         pad: 0.0,
         fixed: None,
     };
+    // Most micropolygons of a grid that several buckets share miss this one (checked before
+    // projecting a lens-blurred still one's corners, which its pixels do not need).
+    if mp.pixels(s.key_box, out).is_none() {
+        return 0;
+    }
     if m.keys.len() == 1 {
         let (mut v, mut k) = ([DVec3::ZERO; 4], [0.0; 4]);
         for ((q, f), &i) in v.iter_mut().zip(&mut k).zip(&quad) {
@@ -376,10 +381,6 @@ fn sample_moving_micropolygon(
             *f = lens.map_or(0.0, |l| l.factor(p.z));
         }
         mp.fixed = Some((v, k));
-    }
-    // Most micropolygons of a grid that several buckets share miss this one.
-    if mp.pixels(s.key_box, out).is_none() {
-        return 0;
     }
     mp.pad = s.pad;
     let n = out.n_per;
