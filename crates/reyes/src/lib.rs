@@ -17,6 +17,7 @@ mod film;
 pub mod filter;
 mod flat_shading;
 mod hider;
+mod int_floor;
 mod lazy_bands;
 mod lens;
 mod motion;

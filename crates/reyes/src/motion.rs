@@ -18,6 +18,7 @@
 //! (a `1/√n` share of the circle of confusion per axis) are visited; whichever of the two
 //! visits fewer pixels is used (`lens_cells_pay`).
 use crate::dice::ShadedGrid;
+use crate::int_floor::floor_f64_to_i32;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
 use crate::stratum_bound::{cut_corners, strata_paths, stratum_bound, StratumBound, StratumPath};
@@ -489,19 +490,6 @@ fn buffer_pixels(b: [f64; 4], out: &SampleBuffer) -> Option<[i32; 4]> {
     (qx0 <= qx1 && qy0 <= qy1).then(|| [qx0, qx1, qy0, qy1].map(|q| q as i32))
 }
 
-/// `x.floor() as i32` without the software `floor` the baseline x86-64 target calls (4.6% of
-/// `rib/bench/camera_blur.rib`'s instructions, from [`buffer_pixels`]): the same value for
-/// every `f64`, NaN and infinities included (`tests::floor_f64_to_i32_is_floor`).
-#[inline]
-fn floor_f64_to_i32(x: f64) -> i32 {
-    let t = x as i32;
-    if f64::from(t) > x {
-        t.saturating_sub(1)
-    } else {
-        t
-    }
-}
-
 /// One moving micropolygon and what testing a sample against it needs.
 struct MovingMicropolygon<'a> {
     g: &'a ShadedGrid,
@@ -736,45 +724,5 @@ impl MovingMicropolygon<'_> {
             hits += 1;
         }
         hits
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::floor_f64_to_i32;
-
-    #[test]
-    fn floor_f64_to_i32_is_floor() {
-        let mut xs = vec![
-            0.0,
-            -0.0,
-            0.5,
-            -0.5,
-            -1.0,
-            2147483647.0,
-            2147483647.5,
-            2147483648.0,
-            -2147483648.0,
-            -2147483648.5,
-            -2147483649.0,
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::MAX,
-            f64::MIN,
-            f64::MIN_POSITIVE,
-            -f64::MIN_POSITIVE,
-        ];
-        let mut h = 0x2545_f491_4f6c_dd1du64;
-        for _ in 0..200_000 {
-            h ^= h << 13;
-            h ^= h >> 7;
-            h ^= h << 17;
-            xs.push(f64::from_bits(h));
-            xs.push((h % 1_000_000) as f64 / 64.0 - 7_812.5);
-        }
-        for x in xs {
-            assert_eq!(floor_f64_to_i32(x), x.floor() as i32, "{x:e}");
-        }
     }
 }

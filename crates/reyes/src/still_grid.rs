@@ -12,6 +12,7 @@
 //! exact per-sample test, which is unchanged, so the same samples are hit with the same
 //! weights and depths as before, bit for bit.
 use crate::dice::ShadedGrid;
+use crate::int_floor::floor_to_i32;
 use crate::raster_triangle::{split_quad, RasterTriangle, TriangleEdges};
 use crate::sample_buffer::{Hit, SampleBuffer};
 use std::cmp::Ordering::Less;
@@ -42,18 +43,6 @@ fn union(a: RasterBox, b: RasterBox) -> RasterBox {
         a[2].min(b[2]),
         a[3].max(b[3]),
     ]
-}
-
-/// `x.floor() as i32` without a call to `floorf` (x86-64's baseline has no rounding
-/// instruction): the same result for every `f32`, NaN and infinities included.
-#[inline]
-pub(crate) fn floor_to_i32(x: f32) -> i32 {
-    let t = x as i32;
-    if (t as f32) > x {
-        t.saturating_sub(1)
-    } else {
-        t
-    }
 }
 
 /// The raster bounds of a grid's rows and columns of micropolygons, found once when the grid
@@ -264,51 +253,5 @@ impl SampleBuffer {
             }
         }
         hits
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn floor_to_i32_is_floor_for_every_kind_of_float() {
-        let mut xs = vec![
-            0.0f32,
-            -0.0,
-            0.5,
-            -0.5,
-            1.0,
-            -1.0,
-            f32::NAN,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::MAX,
-            f32::MIN,
-            f32::MIN_POSITIVE,
-            -f32::MIN_POSITIVE,
-            2147483520.0,
-            2147483648.0,
-            -2147483648.0,
-            -2147483904.0,
-            16777217.0,
-            -16777217.5,
-        ];
-        // A spread of bit patterns across every exponent, both signs.
-        let mut h = 0x9e37_79b9u32;
-        for _ in 0..200_000 {
-            h ^= h << 13;
-            h ^= h >> 17;
-            h ^= h << 5;
-            xs.push(f32::from_bits(h));
-        }
-        for x in xs {
-            assert_eq!(
-                floor_to_i32(x),
-                x.floor() as i32,
-                "{x:e} ({:#x})",
-                x.to_bits()
-            );
-        }
     }
 }
