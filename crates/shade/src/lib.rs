@@ -75,6 +75,7 @@ pub use shadinggrid::ShadingGrid;
 pub use surface::{shade_surface, shade_surface_with, surface, ShadeStats, Surface};
 pub use texturelookup::{ShadowOptions, TextureFilter, TextureLookup, TextureOptions};
 pub use tracing::{
-    cosine_direction, segment, CosinePattern, RayDifferential, RayStart, RayTracer, TraceHit,
+    blocked_by_transmission, cosine_direction, segment, CosinePattern, RayDifferential, RayStart,
+    RayTracer, TraceHit,
 };
 pub use volume::{run_volume, volume, Volume};

@@ -79,12 +79,7 @@ pub trait RayTracer: Send + Sync {
     /// `occlusion()` needs of one shaded point. A tracer may override it to share the
     /// point's set-up among its rays; the sum must stay the same bits.
     fn blocked(&self, from: &RayStart, dirs: &[DVec3], t_max: f64) -> f64 {
-        let mut blocked = 0.0f64;
-        for &dir in dirs {
-            let through = self.transmission(from, dir, t_max);
-            blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
-        }
-        blocked
+        blocked_by_transmission(self, from, dirs, t_max)
     }
 
     /// `Option "trace" "maxdepth"`: rays at this depth return black.
@@ -194,6 +189,22 @@ fn orthonormal(n: DVec3) -> (DVec3, DVec3) {
         DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
         DVec3::new(b, sign + n.y * n.y * a, -n.y),
     )
+}
+
+/// [`RayTracer::blocked`] ray by ray through [`RayTracer::transmission`]: its default, and
+/// what a tracer that overrides it falls back on where it cannot share the set-up.
+pub fn blocked_by_transmission<T: RayTracer + ?Sized>(
+    tracer: &T,
+    from: &RayStart,
+    dirs: &[DVec3],
+    t_max: f64,
+) -> f64 {
+    let mut blocked = 0.0f64;
+    for &dir in dirs {
+        let through = tracer.transmission(from, dir, t_max);
+        blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
+    }
+    blocked
 }
 
 #[cfg(test)]

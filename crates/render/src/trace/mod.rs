@@ -23,7 +23,7 @@ use crate::rayscene::RayScene;
 use crate::shading::FrameShading;
 use glam::{DVec3, Vec3};
 use illume_raytrace::NO_GROUP;
-use illume_shade::{RayDifferential, RayStart, RayTracer, TraceHit};
+use illume_shade::{blocked_by_transmission, RayDifferential, RayStart, RayTracer, TraceHit};
 
 /// Surfaces composited along one `trace()` ray before it counts as opaque.
 const MAX_LAYERS: usize = 16;
@@ -164,14 +164,10 @@ impl RayTracer for FrameShading<'_> {
     /// answer as [`RayTracer::transmission`].
     fn blocked(&self, from: &RayStart, dirs: &[DVec3], t_max: f64) -> f64 {
         let scene = self.ray_scene();
-        let mut blocked = 0.0f64;
         if scene.has_partial_casters() {
-            for &dir in dirs {
-                let through = self.transmission(from, dir, t_max);
-                blocked += 1.0 - f64::from(through.x + through.y + through.z) / 3.0;
-            }
-            return blocked;
+            return blocked_by_transmission(self, from, dirs, t_max);
         }
+        let mut blocked = 0.0f64;
         let opaque = |id: u32| {
             let p = scene.prim_of(id);
             p.shadow && !p.shadow_os
