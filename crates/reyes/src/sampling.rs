@@ -182,8 +182,9 @@ pub fn sample_time_lens(
             ^ hash((py as u32).wrapping_add(0x297a_2d39))
             ^ hash(frame as u32 ^ 0x1b87_3593),
     );
-    // The time permutation is made in place in the records' `stratum` fields, then each
-    // record is filled in from its own.
+    // The time permutation is made in place in the records' `stratum` fields (the records
+    // differ in nothing else yet, so swapping records swaps strata), then each record is
+    // filled in from its own.
     let first = out.len();
     out.extend((0..n as u32).map(|f| TimeLens {
         t: 0.0,
@@ -192,11 +193,7 @@ pub fn sample_time_lens(
         lens_index: 0,
     }));
     let mine = &mut out[first..];
-    fisher_yates(n, pixel ^ 0x7feb_352d, |a, b| {
-        let sa = mine[a].stratum;
-        mine[a].stratum = mine[b].stratum;
-        mine[b].stratum = sa;
-    });
+    fisher_yates(n, pixel ^ 0x7feb_352d, |a, b| mine.swap(a, b));
     let shift = ((u64::from(hash(pixel ^ 0x2545_f491)) * n as u64) >> 32) as u32;
     let [open, close] = shutter;
     with_lens_strata(samples, frame, |lens_of| {
