@@ -16,6 +16,15 @@ use std::sync::Arc;
 pub trait Surface: Send + Sync + std::fmt::Debug {
     /// Camera-space `(P, dP/du, dP/dv)` at `(u, v)`.
     fn eval(&self, u: f64, v: f64) -> [DVec3; 3];
+    /// [`Surface::eval`] at every `(u, v)` of `us × vs`, appended to `out` row by row (`u`
+    /// fastest). A surface whose evaluation separates into a part in `u` and one in `v` (the
+    /// quadrics) shares them along rows and columns; the values must be `eval`'s, bit for bit.
+    fn eval_grid(&self, us: &[f64], vs: &[f64], out: &mut Vec<[DVec3; 3]>) {
+        out.reserve(us.len() * vs.len());
+        for &v in vs {
+            out.extend(us.iter().map(|&u| self.eval(u, v)));
+        }
+    }
     /// A conservative camera-space bound of the sub-range `[u0,u1] × [v0,v1]`.
     fn bound(&self, u: [f64; 2], v: [f64; 2]) -> Bound;
     /// Whether the point `(u, v)` is cut away (a `TrimCurve` region of a NuPatch). Surfaces
@@ -366,9 +375,14 @@ fn dice(piece: &Parametric, nu: usize, nv: usize) -> Grid {
         0.5 * (piece.u[0] + piece.u[1]),
         0.5 * (piece.v[0] + piece.v[1]),
     ];
+    let mut evals = Vec::new();
+    piece.surface.eval_grid(&us, &vs, &mut evals);
+    let mut evals = evals.into_iter();
     for &v in &vs {
         for &u in &us {
-            let [p, dpdu, dpdv] = piece.surface.eval(u, v);
+            let Some([p, dpdu, dpdv]) = evals.next() else {
+                break;
+            };
             g.p.push(p.as_vec3());
             g.dpdu.push((dpdu / su).as_vec3());
             g.dpdv.push((dpdv / sv).as_vec3());

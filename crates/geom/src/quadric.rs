@@ -65,6 +65,14 @@ pub enum Shape {
     },
 }
 
+/// A quadric's profile at one `v` ([`Shape::profile`]).
+enum Profile {
+    /// A point `(ρ, z)` of the profile curve and its derivative `(dρ/dv, dz/dv)`.
+    Revolve(f64, f64, f64, f64),
+    /// The hyperboloid's line: its point at `v` and its direction.
+    Line(DVec3, DVec3),
+}
+
 impl Shape {
     fn thetamax(&self) -> f64 {
         match *self {
@@ -80,16 +88,19 @@ impl Shape {
 
     /// Object-space `(P, dP/du, dP/dv)`.
     pub fn eval(&self, u: f64, v: f64) -> [DVec3; 3] {
-        let tm = self.thetamax();
-        let (sin, cos) = (u * tm).sin_cos();
-        // A profile point (ρ, z) with derivative (dρ/dv, dz/dv), swept by θ.
-        let revolve = |rho: f64, z: f64, drho: f64, dz: f64| {
-            [
-                DVec3::new(rho * cos, rho * sin, z),
-                DVec3::new(-rho * sin * tm, rho * cos * tm, 0.0),
-                DVec3::new(drho * cos, drho * sin, dz),
-            ]
-        };
+        self.swept(&self.profile(v), self.angle(u))
+    }
+
+    /// `(sin θ, cos θ)` at `θ = u·θmax`: the part of [`Shape::eval`] that depends on `u`.
+    fn angle(&self, u: f64) -> (f64, f64) {
+        (u * self.thetamax()).sin_cos()
+    }
+
+    /// The part of [`Shape::eval`] that depends on `v` only: the profile point swept about z.
+    /// A grid evaluates it once per row and [`Shape::angle`] once per column
+    /// ([`Surface::eval_grid`]) instead of both per vertex: two `sin_cos` per vertex were a
+    /// third of a sphere's dicing (callgrind).
+    fn profile(&self, v: f64) -> Profile {
         match *self {
             Shape::Sphere {
                 radius,
@@ -99,26 +110,17 @@ impl Shape {
             } => {
                 let d = phimax - phimin;
                 let (sp, cp) = (phimin + v * d).sin_cos();
-                revolve(radius * cp, radius * sp, -radius * sp * d, radius * cp * d)
+                Profile::Revolve(radius * cp, radius * sp, -radius * sp * d, radius * cp * d)
             }
             Shape::Cone { height, radius, .. } => {
-                revolve(radius * (1.0 - v), v * height, -radius, height)
+                Profile::Revolve(radius * (1.0 - v), v * height, -radius, height)
             }
             Shape::Cylinder {
                 radius, zmin, zmax, ..
-            } => revolve(radius, zmin + v * (zmax - zmin), 0.0, zmax - zmin),
+            } => Profile::Revolve(radius, zmin + v * (zmax - zmin), 0.0, zmax - zmin),
             Shape::Hyperboloid { point1, point2, .. } => {
                 let d = point2 - point1;
-                let p = point1 + v * d;
-                [
-                    DVec3::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos, p.z),
-                    DVec3::new(
-                        (-p.x * sin - p.y * cos) * tm,
-                        (p.x * cos - p.y * sin) * tm,
-                        0.0,
-                    ),
-                    DVec3::new(d.x * cos - d.y * sin, d.x * sin + d.y * cos, d.z),
-                ]
+                Profile::Line(point1 + v * d, d)
             }
             Shape::Paraboloid {
                 rmax, zmin, zmax, ..
@@ -134,9 +136,11 @@ impl Shape {
                 } else {
                     0.0
                 };
-                revolve(rho, z, drho, dz)
+                Profile::Revolve(rho, z, drho, dz)
             }
-            Shape::Disk { height, radius, .. } => revolve(radius * (1.0 - v), height, -radius, 0.0),
+            Shape::Disk { height, radius, .. } => {
+                Profile::Revolve(radius * (1.0 - v), height, -radius, 0.0)
+            }
             Shape::Torus {
                 major,
                 minor,
@@ -146,13 +150,36 @@ impl Shape {
             } => {
                 let d = phimax - phimin;
                 let (sp, cp) = (phimin + v * d).sin_cos();
-                revolve(
+                Profile::Revolve(
                     major + minor * cp,
                     minor * sp,
                     -minor * sp * d,
                     minor * cp * d,
                 )
             }
+        }
+    }
+
+    /// A profile swept to angle `(sin, cos)`: `(P, dP/du, dP/dv)`.
+    #[inline]
+    fn swept(&self, profile: &Profile, (sin, cos): (f64, f64)) -> [DVec3; 3] {
+        let tm = self.thetamax();
+        match *profile {
+            // A profile point (ρ, z) with derivative (dρ/dv, dz/dv), swept by θ.
+            Profile::Revolve(rho, z, drho, dz) => [
+                DVec3::new(rho * cos, rho * sin, z),
+                DVec3::new(-rho * sin * tm, rho * cos * tm, 0.0),
+                DVec3::new(drho * cos, drho * sin, dz),
+            ],
+            Profile::Line(p, d) => [
+                DVec3::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos, p.z),
+                DVec3::new(
+                    (-p.x * sin - p.y * cos) * tm,
+                    (p.x * cos - p.y * sin) * tm,
+                    0.0,
+                ),
+                DVec3::new(d.x * cos - d.y * sin, d.x * sin + d.y * cos, d.z),
+            ],
         }
     }
 
@@ -276,15 +303,36 @@ pub struct Quadric {
     pub camera_from_object: DMat4,
 }
 
-impl Surface for Quadric {
-    fn eval(&self, u: f64, v: f64) -> [DVec3; 3] {
-        let [p, du, dv] = self.shape.eval(u, v);
+impl Quadric {
+    /// Object-space `(P, dP/du, dP/dv)` to camera space.
+    #[inline]
+    fn to_camera(&self, [p, du, dv]: [DVec3; 3]) -> [DVec3; 3] {
         let m = &self.camera_from_object;
         [
             m.transform_point3(p),
             m.transform_vector3(du),
             m.transform_vector3(dv),
         ]
+    }
+}
+
+impl Surface for Quadric {
+    fn eval(&self, u: f64, v: f64) -> [DVec3; 3] {
+        self.to_camera(self.shape.eval(u, v))
+    }
+
+    /// Each column's angle and each row's profile once (the same values [`Shape::eval`]
+    /// computes per vertex, so the same bits): `rib/sphere.rib` at 2× diced in 291 M
+    /// instructions, now 212 M (callgrind; the frame 3.27 G → 3.20 G).
+    fn eval_grid(&self, us: &[f64], vs: &[f64], out: &mut Vec<[DVec3; 3]>) {
+        let angles: Vec<(f64, f64)> = us.iter().map(|&u| self.shape.angle(u)).collect();
+        out.reserve(us.len() * vs.len());
+        for &v in vs {
+            let profile = self.shape.profile(v);
+            for &a in &angles {
+                out.push(self.to_camera(self.shape.swept(&profile, a)));
+            }
+        }
     }
 
     fn bound(&self, u: [f64; 2], v: [f64; 2]) -> Bound {

@@ -336,6 +336,35 @@ proptest! {
     }
 }
 
+proptest! {
+    /// A grid of a quadric shares each column's angle and each row's profile; every vertex
+    /// must still be what `eval` gives at its `(u, v)`, bit for bit.
+    #[test]
+    fn a_quadric_grid_is_its_points_evaluated_one_by_one(
+        r in arb_quadric(),
+        us in prop::collection::vec(-0.2f64..1.2, 1..7),
+        vs in prop::collection::vec(-0.2f64..1.2, 1..7),
+        angle in -3.0f64..3.0,
+    ) {
+        use illume_geom::parametric::Surface;
+        let m = DMat4::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), angle);
+        let Ok(Some(shape)) = Shape::from_request(&r) else { return Ok(()) };
+        let q = Quadric { shape, camera_from_object: m };
+        let mut grid = Vec::new();
+        q.eval_grid(&us, &vs, &mut grid);
+        prop_assert_eq!(grid.len(), us.len() * vs.len());
+        for (k, got) in grid.iter().enumerate() {
+            let want = q.eval(us[k % us.len()], vs[k / us.len()]);
+            for (a, b) in got.iter().zip(&want) {
+                prop_assert!(
+                    a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits),
+                    "{a} != {b}"
+                );
+            }
+        }
+    }
+}
+
 /// The sub-range `u × v` of the quadric `r`, built from the public surface types.
 fn sub(r: &Request, m: DMat4, u: [f64; 2], v: [f64; 2]) -> Option<Parametric> {
     let shape = Shape::from_request(r).unwrap()?;
