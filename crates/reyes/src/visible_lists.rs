@@ -89,6 +89,13 @@ impl VisibleLists {
         self.head[s] == END
     }
 
+    /// Sample `s`'s point when it holds exactly one.
+    #[inline]
+    pub fn single(&self, s: usize) -> Option<&VisiblePoint> {
+        let k = self.head[s];
+        (k != END && self.next[k as usize] == END).then(|| &self.points[k as usize])
+    }
+
     /// Sample `s`'s points in the order they came, into `out` (cleared first).
     pub fn collect(&self, s: usize, out: &mut Vec<VisiblePoint>) {
         out.clear();
