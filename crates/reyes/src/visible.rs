@@ -73,8 +73,8 @@ pub(crate) fn composite(
             if lists.is_empty_at(s) {
                 return empty;
             }
-            let acc = &mut aov_out[s * stride..(s + 1) * stride];
-            let aov = aov.map(|(layout, store)| (layout, store, acc));
+            let aov = aov
+                .map(|(layout, store)| (layout, store, &mut aov_out[s * stride..(s + 1) * stride]));
             // One point (most samples of an opaque scene: an opaque point drops what is
             // behind it) is already sorted, and CSG resolution keeps a list without solid
             // hits as it is: composited where it lies, without copying the list out, sorting
