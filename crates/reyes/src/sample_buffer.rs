@@ -178,6 +178,10 @@ impl SampleBuffer {
     /// Records one sample hit of a micropolygon (still or moving) in sample `s`: colour and
     /// opacity of its triangle (`shade`, from [`ShadedGrid::triangle_shade`]) interpolated at
     /// the hit's barycentric weights (or the micropolygon's constant when shading is flat).
+    ///
+    /// Inlined into the samplers: as a call it spent ~21 instructions per hit passing the
+    /// hit and saving registers (`rib/sphere.rib` at 640×480: 32 M of 3.23 G).
+    #[inline]
     pub fn deposit(&mut self, g: &ShadedGrid, s: usize, hit: Hit, shade: &TriangleShade) {
         let (c, o) = shade.at(hit.w);
         let stride = self.aov_stride;
