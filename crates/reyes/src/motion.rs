@@ -709,18 +709,15 @@ impl MovingMicropolygon<'_> {
                 continue;
             }
             let (idx, ccw) = (t.idx.map(|k| self.quad[k]), t.ccw);
-            out.deposit(
-                self.g,
-                s,
-                Hit {
-                    idx,
-                    w,
-                    first: self.quad[0],
-                    z,
-                    order: self.order,
-                    ccw,
-                },
-            );
+            let hit = Hit {
+                idx,
+                w,
+                first: self.quad[0],
+                z,
+                order: self.order,
+                ccw,
+            };
+            out.deposit(self.g, s, hit, &self.g.triangle_shade(idx, self.quad[0]));
             hits += 1;
         }
         hits

@@ -7,7 +7,7 @@
 //! (and time and lens position, when something blurs) is a hash of its pixel, index and frame
 //! only, so neighbouring buckets agree on the samples they share.
 use crate::csg::NO_SOLID;
-use crate::dice::ShadedGrid;
+use crate::dice::{ShadedGrid, TriangleShade};
 use crate::film::SampleRegion;
 pub(crate) use crate::raster_triangle::{split_quad, RasterTriangle};
 use crate::sampling::{pixel_sample_positions, sample_time_lens};
@@ -176,10 +176,14 @@ impl SampleBuffer {
     }
 
     /// Records one sample hit of a micropolygon (still or moving) in sample `s`: colour and
-    /// opacity interpolated at the hit's barycentric weights (or the micropolygon's first
-    /// vertex when shading is flat).
-    pub fn deposit(&mut self, g: &ShadedGrid, s: usize, hit: Hit) {
-        let (c, o) = g.shaded_at(hit.idx, hit.w, hit.first);
+    /// opacity of its triangle (`shade`, from [`ShadedGrid::triangle_shade`]) interpolated at
+    /// the hit's barycentric weights (or the micropolygon's constant when shading is flat).
+    ///
+    /// Inlined into the samplers: as a call it spent ~21 instructions per hit passing the
+    /// hit and saving registers (`rib/sphere.rib` at 640×480: 32 M of 3.23 G).
+    #[inline]
+    pub fn deposit(&mut self, g: &ShadedGrid, s: usize, hit: Hit, shade: &TriangleShade) {
+        let (c, o) = shade.at(hit.w);
         let stride = self.aov_stride;
         let mut aov = NO_AOV;
         if let Some(k) = self.aov_store.len().checked_div(stride) {

@@ -191,6 +191,7 @@ impl SampleBuffer {
             return 0;
         }
         let edges = TriangleEdges::new(t);
+        let shade = g.triangle_shade(t.idx, first);
         // A triangle without reaching edges holds only points inside its vertices' bound, and
         // its edge tests decide on the exact signs (f32 positions in f64), so a sample beyond
         // that bound (with a margin far above the tests' rounding) fails them: a few compares
@@ -249,7 +250,7 @@ impl SampleBuffer {
                     order,
                     ccw,
                 };
-                self.deposit(g, s, hit);
+                self.deposit(g, s, hit, &shade);
             }
         }
         hits
