@@ -30,7 +30,14 @@ fn scene(dir: &Path, extra: &str) -> String {
 }
 
 /// Writes `rib`'s frame both ways (into `dir/whole` and `dir/streamed`) and compares every file.
-fn same_files_both_ways(dir: &Path, rib: impl Fn(&Path) -> String, crop: Option<[f32; 4]>) {
+/// The streamed side runs on `threads` threads: with more than one, a band is written while the
+/// next one renders, which must not change a byte.
+fn same_files_both_ways(
+    dir: &Path,
+    rib: impl Fn(&Path) -> String,
+    crop: Option<[f32; 4]>,
+    threads: usize,
+) {
     let (whole, streamed) = (dir.join("whole"), dir.join("streamed"));
     for d in [&whole, &streamed] {
         std::fs::create_dir_all(d).unwrap();
@@ -41,7 +48,11 @@ fn same_files_both_ways(dir: &Path, rib: impl Fn(&Path) -> String, crop: Option<
         w.unwrap();
     }
     let frame = &support::frames(&rib(&streamed), crop)[0];
-    let (report, written) = render_to_displays(frame, &RenderSettings::default());
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let (report, written) = pool.install(|| render_to_displays(frame, &RenderSettings::default()));
     assert_eq!(
         report.warnings.len(),
         r.warnings.len(),
@@ -71,13 +82,17 @@ fn same_files_both_ways(dir: &Path, rib: impl Fn(&Path) -> String, crop: Option<
 #[test]
 fn streamed_displays_equal_the_whole_image_files_byte_for_byte() {
     let dir = std::env::temp_dir().join(format!("illume-stream-{}", std::process::id()));
-    same_files_both_ways(&dir.join("full"), |d| scene(d, ""), None);
-    // A crop window: rows start below the frame's top, dither is keyed on full-frame pixels.
-    same_files_both_ways(
-        &dir.join("crop"),
-        |d| scene(d, "Exposure 1.5 2.2"),
-        Some([0.13, 0.71, 0.21, 0.9]),
-    );
+    for threads in [1, 3] {
+        let dir = dir.join(threads.to_string());
+        same_files_both_ways(&dir.join("full"), |d| scene(d, ""), None, threads);
+        // A crop window: rows start below the frame's top, dither is keyed on full-frame pixels.
+        same_files_both_ways(
+            &dir.join("crop"),
+            |d| scene(d, "Exposure 1.5 2.2"),
+            Some([0.13, 0.71, 0.21, 0.9]),
+            threads,
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -102,6 +117,6 @@ fn a_pass_that_starts_over_streams_the_final_image() {
         "the scene must overflow its bound: {:?}",
         r.warnings
     );
-    same_files_both_ways(&dir, rib, None);
+    same_files_both_ways(&dir, rib, None, 3);
     let _ = std::fs::remove_dir_all(&dir);
 }
