@@ -283,6 +283,91 @@ mod tests {
         };
         assert_eq!(q16.sample_depth(), SampleDepth::U16);
     }
+
+    /// `quantize_image` (row by row in parallel, positions counted along the row) against
+    /// `Quantize::quantize` per sample: the same stored value for every depth, with and
+    /// without dither, clamps that bind, NaN and infinities, and positions whose hash input
+    /// wraps around `u32`.
+    #[test]
+    fn a_quantized_image_is_its_samples_quantized_one_by_one() {
+        let settings = [
+            Quantize::RGBA_DEFAULT,
+            Quantize {
+                one: 255,
+                min: 0,
+                max: 255,
+                dither: 0.0,
+            },
+            Quantize {
+                one: 65535,
+                min: 0,
+                max: 65535,
+                dither: 0.5,
+            },
+            Quantize {
+                one: 1000,
+                min: 20,
+                max: 900,
+                dither: 3.0,
+            },
+            Quantize {
+                one: 255,
+                min: -40,
+                max: 300,
+                dither: 0.5,
+            },
+            Quantize {
+                one: 0,
+                min: 0,
+                max: 0,
+                dither: 0.0,
+            },
+        ];
+        let mut h = 0x2545_f491u32;
+        let mut next = || {
+            h ^= h << 13;
+            h ^= h >> 17;
+            h ^= h << 5;
+            h
+        };
+        for q in settings {
+            for origin in [[0, 0], [17, 3], [u32::MAX - 2, u32::MAX - 1]] {
+                let mut image = crate::Image::new(7, 5, "rgba");
+                for v in &mut image.data {
+                    *v = match next() % 12 {
+                        0 => f32::NAN,
+                        1 => f32::INFINITY,
+                        2 => f32::NEG_INFINITY,
+                        3 => -0.3,
+                        _ => (next() % 3000) as f32 / 2000.0 - 0.2,
+                    };
+                }
+                let want = |i: usize| {
+                    let (p, c) = (i / 4, i % 4);
+                    let (x, y) = (p as u32 % 7, p as u32 / 7);
+                    let (x, y) = (origin[0].wrapping_add(x), origin[1].wrapping_add(y));
+                    q.quantize(image.data[i], x, y, c as u32)
+                };
+                let got: Vec<f64> = match quantize_image(&image, q, origin) {
+                    Samples::U8(v) => v.into_iter().map(f64::from).collect(),
+                    Samples::U16(v) => v.into_iter().map(f64::from).collect(),
+                    Samples::F32(v) => v.into_iter().map(f64::from).collect(),
+                };
+                assert_eq!(got.len(), image.data.len());
+                for (i, g) in got.iter().enumerate() {
+                    let w = match q.sample_depth() {
+                        SampleDepth::U8 => f64::from(want(i) as u8),
+                        SampleDepth::U16 => f64::from(want(i) as u16),
+                        SampleDepth::Float => f64::from(want(i) as f32),
+                    };
+                    assert!(
+                        g.to_bits() == w.to_bits() || (g.is_nan() && w.is_nan()),
+                        "{q:?} at {origin:?} sample {i}: {g} vs {w}"
+                    );
+                }
+            }
+        }
+    }
 }
 
 /// Quantized samples ready for an encoder, interleaved like the [`crate::Image`] they came from.
