@@ -30,8 +30,7 @@ fn scene(dir: &Path, extra: &str) -> String {
 }
 
 /// Writes `rib`'s frame both ways (into `dir/whole` and `dir/streamed`) and compares every file.
-/// The streamed side runs on `threads` threads: with more than one, a band is written while the
-/// next one renders, which must not change a byte.
+/// The streamed side runs on `threads` threads, which must not change a byte.
 fn same_files_both_ways(
     dir: &Path,
     rib: impl Fn(&Path) -> String,

@@ -12,7 +12,7 @@ use crate::film::Film;
 use crate::lazy_bands::{frame_moves, refine_frame, LazyBands, Overflowed, RefineReport};
 use crate::lens::Lens;
 use crate::refine::{Piece, Refiner};
-use crate::row_sink::{FrameCollector, PixelRows, RowSink};
+use crate::row_sink::{FrameCollector, RowSink};
 use crate::sample_buffer::SampleSetup;
 use crate::shader::GridShader;
 use crate::{Rendered, Stats};
@@ -199,7 +199,9 @@ impl<'f> Hider<'f> {
             total: AtomicUsize::new(layout.bucket_count()),
         };
         sink.begin_pass();
-        let lazy = stream_bands(LazyBands::new(frame, &refiner, &layout), &bands, sink);
+        let lazy = LazyBands::new(frame, &refiner, &layout).render(|pieces, lists, grids, by| {
+            sink.rows(bands.render(by, pieces, lists, grids));
+        });
         // A displaced grid that left its bound needs the displacement-bound loop, which may
         // grow any piece and render again: refine the whole frame up front and start over.
         let report = lazy.unwrap_or_else(|Overflowed| {
@@ -292,35 +294,4 @@ fn dropped_warnings(frame: &Frame, report: &RefineReport) -> Vec<Diagnostic> {
             ),
         })
         .collect()
-}
-
-/// Renders the frame band by band into `sink`. With more than one thread a finished band is
-/// written (quantized, compressed) while the next band's buckets render, instead of leaving
-/// the other threads idle at the band's end: the write was 13% of `rib/sphere.rib`'s wall time
-/// at 2 threads. Rows still reach the sink in order and are the same bytes; two bands are
-/// alive at once, so a single thread keeps to one.
-fn stream_bands(
-    lazy: LazyBands,
-    bands: &BandRenderer,
-    sink: &mut dyn RowSink,
-) -> Result<RefineReport, Overflowed> {
-    let overlap = rayon::current_num_threads() > 1;
-    let mut written: Option<PixelRows> = None;
-    let report = lazy.render(|pieces, lists, grids, by| {
-        if !overlap {
-            sink.rows(bands.render(by, pieces, lists, grids));
-            return;
-        }
-        let (ready, sink) = (written.take(), &mut *sink);
-        let ((), rows) = rayon::join(
-            move || ready.into_iter().for_each(|r| sink.rows(r)),
-            || bands.render(by, pieces, lists, grids),
-        );
-        written = Some(rows);
-    });
-    // After an overflow the pass is void (the caller's `begin_pass` starts the files again).
-    if report.is_ok() {
-        written.into_iter().for_each(|r| sink.rows(r));
-    }
-    report
 }

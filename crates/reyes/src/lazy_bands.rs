@@ -162,73 +162,48 @@ impl<'f, 'l> LazyBands<'f, 'l> {
     }
 
     fn wait(&mut self, deferred: Vec<(usize, Item<'f>)>) {
-        wait(&mut self.waiting, &mut self.waiting_count, deferred);
+        self.waiting_count += deferred.len();
+        for (band, item) in deferred {
+            self.waiting[band].push(item);
+        }
     }
 
     /// Renders the frame band by band with `band` (given the live pieces, the band's bucket
     /// lists, the pieces' grids and the band index). Stops with [`Overflowed`] after the
     /// first band in which a displaced grid left its bound.
-    ///
-    /// The next band's waiting items are refined while a band renders (`rayon::join`): they
-    /// wait only for earlier bands' refining, never for their buckets, and refining a band
-    /// alone left the other threads idle (7% of `rib/sphere.rib`'s wall time at 2 threads).
-    /// The pieces join the live ones after the band, as before, so nothing else changes.
     pub fn render(
         mut self,
-        mut band: impl FnMut(&[Piece], &[Vec<usize>], &[GridSlot], usize) + Send,
+        mut band: impl FnMut(&[Piece], &[Vec<usize>], &[GridSlot], usize),
     ) -> Result<RefineReport, Overflowed> {
-        let count = self.layout.band_count();
-        let mut fresh = self.refine_waiting(0);
-        for by in 0..count {
-            self.admit(by, fresh);
+        for by in 0..self.layout.band_count() {
+            self.refine_band(by);
             let lists = self.layout.band_lists(by, &self.pieces);
-            let mut next = Vec::new();
-            {
-                let LazyBands {
-                    frame,
-                    refiner,
-                    layout,
-                    waiting,
-                    waiting_count,
-                    pieces,
-                    grids,
-                    report,
-                } = &mut self;
-                let (frame, refiner, layout) = (*frame, *refiner, *layout);
-                let mut refine_next = || {
-                    if by + 1 < count {
-                        let waiting = (&mut waiting[..], &mut *waiting_count);
-                        next = refine_waiting(frame, refiner, layout, waiting, report, by + 1);
-                    }
-                };
-                rayon::join(|| band(pieces, &lists, grids, by), &mut refine_next);
-            }
+            band(&self.pieces, &lists, &self.grids, by);
             if self.grids.iter().any(|g| g.overflow.get().is_some()) {
                 return Err(Overflowed);
             }
             self.retire(by);
-            fresh = next;
         }
         Ok(self.report)
     }
 
-    /// The dice-ready pieces of the items waiting for band `by`, in refine order; their
-    /// children that first touch a later band wait for it.
-    fn refine_waiting(&mut self, by: usize) -> Vec<Piece<'f>> {
-        let waiting = (&mut self.waiting[..], &mut self.waiting_count);
-        refine_waiting(
-            self.frame,
-            self.refiner,
-            self.layout,
-            waiting,
-            &mut self.report,
-            by,
-        )
-    }
-
-    /// Band `by`'s freshly refined pieces join the live ones in refine order.
-    fn admit(&mut self, by: usize, fresh: Vec<Piece<'f>>) {
+    /// Refines the items waiting for band `by` until every piece is dice-ready or waits for a
+    /// later band; the dice-ready ones join the live pieces in refine order.
+    fn refine_band(&mut self, by: usize) {
+        let items = std::mem::take(&mut self.waiting[by]);
+        self.waiting_count -= items.len();
         let layout = self.layout;
+        let defer = |r: &[f32; 4]| Some(layout.band_of(r)).filter(|&b| b > by);
+        let (frame, refiner) = (self.frame, self.refiner);
+        let (mut fresh, deferred) = refine_all(
+            frame,
+            refiner,
+            items.into_par_iter(),
+            &defer,
+            &mut self.report,
+        );
+        self.wait(deferred);
+        fresh.sort_by(|a, b| a.refine_order(b));
         let mut joining = Vec::with_capacity(fresh.len());
         for p in fresh {
             let Some([bx0, bx1, by0, by1]) = layout.buckets_of(&p.raster) else {
@@ -292,31 +267,4 @@ impl<'f, 'l> LazyBands<'f, 'l> {
         self.grids
             .retain(|_| *k.next().expect("one flag per piece"));
     }
-}
-
-/// Puts deferred items to wait for their bands.
-fn wait<'f>(waiting: &mut [Vec<Item<'f>>], count: &mut usize, deferred: Vec<(usize, Item<'f>)>) {
-    *count += deferred.len();
-    for (band, item) in deferred {
-        waiting[band].push(item);
-    }
-}
-
-/// [`LazyBands::refine_waiting`] on the fields it needs, so that it can run beside a band
-/// that reads the live pieces.
-fn refine_waiting<'f>(
-    frame: &'f Frame,
-    refiner: &Refiner<'f>,
-    layout: &BucketLayout,
-    (waiting, waiting_count): (&mut [Vec<Item<'f>>], &mut usize),
-    report: &mut RefineReport,
-    by: usize,
-) -> Vec<Piece<'f>> {
-    let items = std::mem::take(&mut waiting[by]);
-    *waiting_count -= items.len();
-    let defer = |r: &[f32; 4]| Some(layout.band_of(r)).filter(|&b| b > by);
-    let (mut fresh, deferred) = refine_all(frame, refiner, items.into_par_iter(), &defer, report);
-    wait(waiting, waiting_count, deferred);
-    fresh.sort_by(|a, b| a.refine_order(b));
-    fresh
 }

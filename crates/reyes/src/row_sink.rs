@@ -20,9 +20,8 @@ pub struct PixelRows {
 }
 
 /// Where the hider delivers finished rows. Rows arrive in order, each band right below the
-/// previous one, covering the crop window exactly once per pass. `Send`: with more than one
-/// thread the hider writes a band while the next one renders (`hider.rs`).
-pub trait RowSink: Send {
+/// previous one, covering the crop window exactly once per pass.
+pub trait RowSink {
     /// A pass over the frame starts. The displacement-bound loop may render the frame again
     /// (a displaced grid left its bound): then everything delivered since the previous call
     /// is void and rows start again from the top.
