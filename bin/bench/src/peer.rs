@@ -349,7 +349,7 @@ fn run_scene(cfg: &PeerConfig, s: &PeerScene, ours: &Path, peer: &Path) -> Resul
     ];
     let mut peer_args: Vec<String> = cfg.peer[1..].to_vec();
     peer_args.push(name.clone());
-    let peer_prog = PathBuf::from(&cfg.peer[0]);
+    let peer_prog = program_path(&cfg.peer[0]);
     let (mut best_ours, mut best_peer) = (None, None);
     for _ in 0..cfg.repeat.max(1) {
         let u = run_measured(cfg.render, &ours_args, &dir_of(ours))?;
@@ -392,6 +392,18 @@ fn run_scene(cfg: &PeerConfig, s: &PeerScene, ours: &Path, peer: &Path) -> Resul
     })
 }
 
+/// The peer's program as a path that still names it from the scene's scratch folder, where it
+/// runs: a relative path with a folder in it (`../shared/tools/aqsis-render`, as the README
+/// writes it) is made absolute from the current folder; a bare name is left to `PATH`.
+fn program_path(program: &str) -> PathBuf {
+    let path = Path::new(program);
+    if path.is_relative() && path.components().count() > 1 {
+        std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf())
+    } else {
+        path.to_path_buf()
+    }
+}
+
 /// Runs the set (or the scenes named in `only`); scenes that fail are reported and skipped.
 pub fn run(cfg: &PeerConfig, only: &[String]) -> Result<(Vec<PeerRow>, usize), String> {
     if cfg.peer.is_empty() {
@@ -419,6 +431,22 @@ pub fn run(cfg: &PeerConfig, only: &[String]) -> Result<(Vec<PeerRow>, usize), S
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_relative_peer_path_is_taken_from_the_current_folder() {
+        let here = std::env::current_dir().unwrap();
+        let p = program_path("../tools/aqsis-render");
+        assert!(p.is_absolute(), "{}", p.display());
+        assert!(
+            p.starts_with(&here),
+            "{} not under {}",
+            p.display(),
+            here.display()
+        );
+        assert!(p.ends_with("tools/aqsis-render"));
+        assert_eq!(program_path("aqsis"), PathBuf::from("aqsis"));
+        assert_eq!(program_path("/opt/x/aqsis"), PathBuf::from("/opt/x/aqsis"));
+    }
 
     #[test]
     fn variants_scale_every_format_and_apply_the_edits() {
