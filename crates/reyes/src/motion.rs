@@ -680,46 +680,62 @@ impl MovingMicropolygon<'_> {
 
     /// Tests sample `ts` against the micropolygon with raster corners `v` (moved to the
     /// sample's time and lens position); deposits its hits.
+    ///
+    /// The two triangles of [`split_quad`] one after the other, each with its vertices and
+    /// reach as constants: looping over `split_quad`'s array made every call build it on the
+    /// stack and spill around it (about 115 instructions before the first test, a fifth of a
+    /// candidate sample's cost on `rib/bench/camera_blur.rib`).
     fn sample_corners(
         &self,
         v: [DVec3; 4],
         ts: &crate::time_strata::TimedSample,
         out: &mut SampleBuffer,
     ) -> u64 {
+        let [(first, first_reach), (second, second_reach)] = split_quad([0, 1, 2, 3], self.reach);
+        self.sample_triangle(v, first, first_reach, ts, out)
+            + self.sample_triangle(v, second, second_reach, ts, out)
+    }
+
+    /// [`Self::sample_corners`] for the triangle of corners `tri` with edge reach `reach`.
+    #[inline(always)]
+    fn sample_triangle(
+        &self,
+        v: [DVec3; 4],
+        tri: [usize; 3],
+        reach: [f64; 3],
+        ts: &crate::time_strata::TimedSample,
+        out: &mut SampleBuffer,
+    ) -> u64 {
         let (x, y) = (f64::from(ts.x), f64::from(ts.y));
         let s = ts.s as usize;
-        let mut hits = 0;
-        for (tri, reach) in split_quad([0, 1, 2, 3], self.reach) {
-            let Some(t) = RasterTriangle::new(tri.map(|k| v[k]), tri, reach) else {
-                continue;
-            };
-            let Some(w) = t.covers(x, y) else {
-                continue;
-            };
-            // Divided per sample (this triangle exists for one sample only);
-            // a still triangle multiplies by reciprocals it computes once.
-            let vd = t.v;
-            let z = if self.persp {
-                (1.0 / (w[0] / vd[0].z + w[1] / vd[1].z + w[2] / vd[2].z)) as f32
-            } else {
-                (w[0] * vd[0].z + w[1] * vd[1].z + w[2] * vd[2].z) as f32
-            };
-            let [near, far] = out.near_far;
-            if z < near || z > far || z >= out.opaque_z[s] {
-                continue;
-            }
-            let (idx, ccw) = (t.idx.map(|k| self.quad[k]), t.ccw);
-            let hit = Hit {
-                idx,
-                w,
-                first: self.quad[0],
-                z,
-                order: self.order,
-                ccw,
-            };
-            out.deposit(self.g, s, hit, &self.g.triangle_shade(idx, self.quad[0]));
-            hits += 1;
+        let Some(t) = RasterTriangle::new(tri.map(|k| v[k]), tri, reach) else {
+            return 0;
+        };
+        let Some(w) = t.covers(x, y) else {
+            return 0;
+        };
+        // Divided per sample (this triangle exists for one sample only);
+        // a still triangle multiplies by reciprocals it computes once.
+        let vd = t.v;
+        let z = if self.persp {
+            (1.0 / (w[0] / vd[0].z + w[1] / vd[1].z + w[2] / vd[2].z)) as f32
+        } else {
+            (w[0] * vd[0].z + w[1] * vd[1].z + w[2] * vd[2].z) as f32
+        };
+        let [near, far] = out.near_far;
+        if z < near || z > far || z >= out.opaque_z[s] {
+            return 0;
         }
-        hits
+        let (idx, ccw) = (t.idx.map(|k| self.quad[k]), t.ccw);
+        let hit = Hit {
+            idx,
+            w,
+            first: self.quad[0],
+            z,
+            order: self.order,
+            ccw,
+        };
+        out.deposit(self.g, s, hit, &self.g.triangle_shade(idx, self.quad[0]));
+        1
     }
 }

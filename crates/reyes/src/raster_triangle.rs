@@ -57,7 +57,7 @@ impl RasterTriangle {
     }
 
     /// The barycentric weights of raster point `(x, y)` when the triangle covers it.
-    #[inline]
+    #[inline(always)]
     pub fn covers(&self, x: f64, y: f64) -> Option<[f64; 3]> {
         let (v, r) = (&self.v, &self.reach);
         if !(edge(v[0], v[1], r[0], x, y)
