@@ -94,6 +94,7 @@ impl ShadedGrid {
 
     /// The colour and opacity of the triangle with grid vertices `idx` in the micropolygon
     /// whose first vertex is `first`, for [`TriangleShade::at`] to weigh at each hit.
+    #[inline]
     pub(crate) fn triangle_shade(&self, idx: [usize; 3], first: usize) -> TriangleShade {
         if self.smooth {
             let base = self.held.start * self.nu;

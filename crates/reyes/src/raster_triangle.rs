@@ -101,6 +101,7 @@ pub(crate) struct TriangleEdges {
 }
 
 impl TriangleEdges {
+    #[inline]
     pub fn new(t: &RasterTriangle) -> TriangleEdges {
         let v = &t.v;
         let mut e = TriangleEdges {

@@ -146,14 +146,14 @@ impl SampleBuffer {
             return 0;
         }
         let order = ((id as u64) << 32) | m as u64;
-        let mut hits = 0;
-        for (tri, reach) in split_quad(quad, reach) {
+        // The two triangles one after the other, not a loop over `split_quad`'s array (built
+        // on the stack and spilled around for every micropolygon).
+        let [(t0, r0), (t1, r1)] = split_quad(quad, reach);
+        let mut one = |tri: [usize; 3], reach| {
             let v = tri.map(|k| g.vertex(k).as_dvec3());
-            if let Some(t) = RasterTriangle::new(v, tri, reach) {
-                hits += self.sample_triangle(g, &t, a, order);
-            }
-        }
-        hits
+            RasterTriangle::new(v, tri, reach).map_or(0, |t| self.sample_triangle(g, &t, a, order))
+        };
+        one(t0, r0) + one(t1, r1)
     }
 
     /// Whether a raster box grown by `grow` reaches a pixel of this bucket's sample region:
