@@ -681,8 +681,8 @@ impl MovingMicropolygon<'_> {
     /// Tests sample `ts` against the micropolygon with raster corners `v` (moved to the
     /// sample's time and lens position); deposits its hits.
     ///
-    /// The two triangles of [`split_quad`] one after the other, each with its vertices and
-    /// reach as constants: looping over `split_quad`'s array made every call build it on the
+    /// The two triangles of [`split_quad`] one after the other, each with its corner indices
+    /// known to the compiler: looping over `split_quad`'s array made every call build it on the
     /// stack and spill around it (about 115 instructions before the first test, a fifth of a
     /// candidate sample's cost on `rib/bench/camera_blur.rib`).
     fn sample_corners(
