@@ -58,7 +58,7 @@ pub use parametric::{Parametric, Surface};
 pub use primvar::{ClassCounts, PrimVar, PrimVarData};
 pub use trimcurve::{TrimCurveArgs, TrimCurves};
 
-use glam::DMat4;
+use glam::{DMat4, Vec3};
 use illume_rib::{Declaration, Request};
 use std::sync::Arc;
 use thiserror::Error;
@@ -103,6 +103,16 @@ pub trait Primitive: Send + Sync + std::fmt::Debug {
     /// Adjacent grids of one primitive share their edge vertices exactly (same parameter
     /// values evaluated the same way), so no crack opens between them.
     fn dice(&self, nu: usize, nv: usize) -> Grid;
+
+    /// The vertex counts and positions of [`Primitive::dice`]`(nu, nv)`, bit for bit, and
+    /// nothing else: what the hider's test dice (the dice rates) looks at. A primitive whose
+    /// positions cost less on their own overrides it: a test dice of a parametric piece cost
+    /// 26 000 instructions through `dice`, of which the normals, derivatives and variables
+    /// the test never reads were two thirds.
+    fn dice_positions(&self, nu: usize, nv: usize) -> (usize, usize, Vec<Vec3>) {
+        let g = self.dice(nu, nv);
+        (g.nu, g.nv, g.p)
+    }
 
     /// The whole quadric this primitive is, with its camera-from-object transformation, for
     /// a ray tracer that intersects quadrics in closed form; `None` for anything else

@@ -352,6 +352,21 @@ impl Primitive for Parametric {
     fn dice(&self, nu: usize, nv: usize) -> Grid {
         dice(self, nu.max(2), nv.max(2))
     }
+
+    fn dice_positions(&self, nu: usize, nv: usize) -> (usize, usize, Vec<Vec3>) {
+        let (nu, nv) = (nu.max(2), nv.max(2));
+        // The parameters and evaluation `dice` uses, so the same positions.
+        let us: Vec<f64> = (0..nu).map(|i| lerp_param(self.u, i, nu)).collect();
+        let vs: Vec<f64> = (0..nv).map(|j| lerp_param(self.v, j, nv)).collect();
+        let mut evals = Vec::new();
+        self.surface.eval_grid(&us, &vs, &mut evals);
+        let p = evals
+            .iter()
+            .take(nu * nv)
+            .map(|[p, _, _]| p.as_vec3())
+            .collect();
+        (nu, nv, p)
+    }
 }
 
 fn dice(piece: &Parametric, nu: usize, nv: usize) -> Grid {

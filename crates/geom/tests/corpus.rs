@@ -1,5 +1,6 @@
 //! Every geometry request of the real-world RIB corpus builds without a panic, and every
-//! primitive it builds dices to finite points inside its bound.
+//! primitive it builds dices to finite points inside its bound (and its positions-only dice
+//! gives the same points).
 mod support;
 use glam::DMat4;
 use illume_geom::{basis_matrix, build, BuildContext, GeomError, Primitive};
@@ -97,6 +98,19 @@ fn check(list: &[Box<dyn Primitive>], file: &Path, req: &Request) {
     for p in list {
         let b = p.bound();
         let g = p.dice(4, 4);
+        // The hider's test dice reads positions alone: they must be `dice`'s, bit for bit.
+        let (nu, nv, pos) = p.dice_positions(4, 4);
+        assert!(
+            (nu, nv) == (g.nu, g.nv)
+                && pos.len() == g.p.len()
+                && pos
+                    .iter()
+                    .zip(&g.p)
+                    .all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)),
+            "{}: {} dice_positions differs from dice",
+            file.display(),
+            req.name()
+        );
         for q in &g.p {
             assert!(
                 q.is_finite(),

@@ -12,7 +12,7 @@ use crate::film::Film;
 use crate::lazy_bands::{frame_moves, refine_frame, LazyBands, Overflowed, RefineReport};
 use crate::lens::Lens;
 use crate::refine::{Piece, Refiner};
-use crate::row_sink::{FrameCollector, RowSink};
+use crate::row_sink::{FrameCollector, PixelRows, RowSink};
 use crate::sample_buffer::SampleSetup;
 use crate::shader::GridShader;
 use crate::{Rendered, Stats};
@@ -154,7 +154,7 @@ impl<'f> Hider<'f> {
         self,
         shader: &dyn GridShader,
         progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-        sink: &mut dyn RowSink,
+        sink: &mut (dyn RowSink + Send),
     ) -> Rendered {
         let Hider {
             frame,
@@ -199,9 +199,29 @@ impl<'f> Hider<'f> {
             total: AtomicUsize::new(layout.bucket_count()),
         };
         sink.begin_pass();
+        // A band's rows go to the sink while the next band renders, when they are small
+        // enough to hold that long (`OVERLAP_BYTES`); larger ones are written at once.
+        let mut written: Option<PixelRows> = None;
         let lazy = LazyBands::new(frame, &refiner, &layout).render(|pieces, lists, grids, by| {
-            sink.rows(bands.render(by, pieces, lists, grids));
+            let rows = match written.take() {
+                Some(prev) => {
+                    rayon::join(
+                        || sink.rows(prev),
+                        || bands.render(by, pieces, lists, grids),
+                    )
+                    .1
+                }
+                None => bands.render(by, pieces, lists, grids),
+            };
+            if rows_bytes(&rows) <= OVERLAP_BYTES {
+                written = Some(rows);
+            } else {
+                sink.rows(rows);
+            }
         });
+        if let Some(rows) = written.take() {
+            sink.rows(rows);
+        }
         // A displaced grid that left its bound needs the displacement-bound loop, which may
         // grow any piece and render again: refine the whole frame up front and start over.
         let report = lazy.unwrap_or_else(|Overflowed| {
@@ -275,6 +295,19 @@ impl<'f> Hider<'f> {
             warnings,
         }
     }
+}
+
+/// The largest band of rows [`Hider::render_to`] holds while the next band renders, to write
+/// it meanwhile. Writing (display channels, quantizing, compressing) was serial work between
+/// bands that left the other threads idle: 12% of `rib/sphere.rib`'s wall time at 2× and 2
+/// threads. Holding a band longer costs its rows once more (a 960-pixel-wide band of 16 rows
+/// is 300 KB); above this a band is written at once, so the peak does not grow with the
+/// frame's width (a 5120-pixel band is 1.6 MB).
+const OVERLAP_BYTES: usize = 1 << 20;
+
+/// The bytes a band of rows holds.
+fn rows_bytes(rows: &PixelRows) -> usize {
+    (rows.rgba.len() + rows.z.len() + rows.aov.len()) * std::mem::size_of::<f32>()
 }
 
 /// One warning per primitive some of whose pieces were dropped at the eye plane (or at the

@@ -484,11 +484,11 @@ impl Refiner<'_> {
         later: &[PrimRef],
         attrs: &Attributes,
     ) -> (usize, usize) {
-        let g = prim.dice(TEST_DICE, TEST_DICE);
+        let g = TestDice::of(prim);
         let pts: Vec<Option<DVec3>> = g.p.iter().map(|&p| self.project(p)).collect();
         let mut blur = 0.0f64;
         for k in later {
-            let gk = k.get().dice(TEST_DICE, TEST_DICE);
+            let gk = TestDice::of(k.get());
             for (a, &p) in pts.iter().zip(&gk.p) {
                 if let (Some(a), Some(b)) = (a, self.project(p)) {
                     blur = blur.max((b.truncate() - a.truncate()).length());
@@ -529,6 +529,20 @@ impl Refiner<'_> {
     }
 }
 
+/// A coarse dice's positions (`TEST_DICE` vertices a side), for the dice rates.
+struct TestDice {
+    nu: usize,
+    nv: usize,
+    p: Vec<Vec3>,
+}
+
+impl TestDice {
+    fn of(prim: &dyn Primitive) -> TestDice {
+        let (nu, nv, p) = prim.dice_positions(TEST_DICE, TEST_DICE);
+        TestDice { nu, nv, p }
+    }
+}
+
 /// The fewest micropolygons per side that give a piece area at all, from its test dice
 /// (camera-space points, so a projection that lines points up does not count): a direction
 /// whose first and last iso-lines are both collapsed to points (a sphere's poles) needs two
@@ -536,7 +550,7 @@ impl Refiner<'_> {
 /// needs three. Without this a sphere about a pixel across diced at one segment per side has
 /// every vertex of a row at one pole, or both columns on one meridian: all its micropolygons
 /// have zero area and no sample ever sees it (the 10⁶-sphere scene of issue 23 came out empty).
-fn min_segments(g: &illume_geom::Grid) -> (usize, usize) {
+fn min_segments(g: &TestDice) -> (usize, usize) {
     let (nu, nv) = (g.nu, g.nv);
     let (lo, hi) = g.p.iter().fold(
         (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
