@@ -481,6 +481,7 @@ pub(crate) fn quantize_image(
         out.par_chunks_mut(row)
             .zip(image.data.par_chunks(row))
             .enumerate()
+            .with_min_len(ROWS_PER_TASK)
             .for_each(|(y, (dst, src))| {
                 let y = origin[1].wrapping_add(y as u32);
                 for (x, (d, s)) in dst.chunks_mut(nc).zip(src.chunks(nc)).enumerate() {
@@ -503,6 +504,11 @@ pub(crate) fn quantize_image(
     }
 }
 
+/// The fewest rows one parallel quantize task takes. A streamed display quantizes a few rows
+/// at a time while the next band renders on the other threads: split per row, each call woke
+/// them for tasks of a few microseconds.
+const ROWS_PER_TASK: usize = 16;
+
 /// [`quantize_image`] for an unsigned integer type, row by row in parallel through
 /// [`Quantizer::at_integer`]; RGBA rows (the common display) go through a loop unrolled over
 /// the four channels.
@@ -519,6 +525,7 @@ fn integer_rows<T: Send + Copy + Default>(
     out.par_chunks_mut(row)
         .zip(image.data.par_chunks(row))
         .enumerate()
+        .with_min_len(ROWS_PER_TASK)
         .for_each(|(y, (dst, src))| {
             let y = origin[1].wrapping_add(y as u32);
             if nc == 4 {
