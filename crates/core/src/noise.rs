@@ -119,6 +119,8 @@ fn gradient_noise_in<const D: usize>(x: &[f32], period: Option<&[i32]>, seed: u3
         }
     }
     let mut total = 0.0f32;
+    // `corner` picks a column of `grads` and the corner's bits, not an element to iterate.
+    #[allow(clippy::needless_range_loop)]
     for corner in 0..corners {
         let mut weight = 1.0f32;
         for (k, &w) in fades[..d].iter().enumerate() {
