@@ -95,6 +95,17 @@ fn streamed_displays_equal_the_whole_image_files_byte_for_byte() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A frame so wide that a band of rows (8 rows here) is over the hider's budget for holding it
+/// while the next band renders (1 MiB: 7000 × 8 pixels of RGBA and depth alone are 1.1 MB) is
+/// written band by band as each is done: the same bytes as the overlapped small frames above.
+#[test]
+fn a_wide_frame_written_band_by_band_streams_the_same_files() {
+    let dir = std::env::temp_dir().join(format!("illume-stream-wide-{}", std::process::id()));
+    let rib = |d: &Path| scene(d, "").replace("Format 150 110 1", "Format 7000 16 1");
+    same_files_both_ways(&dir, rib, None, 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A displacement larger than its bound makes the hider render the frame again; the streamed
 /// files of the first pass are dropped and the second pass's rows written instead.
 #[test]
