@@ -43,18 +43,23 @@ impl<'a> Sampler<'a> {
             }
             Backing::Tiled(tx) => {
                 let (tw, th) = tx.tile;
-                let key = (level as u32, (x / tw) as u32, (y / th) as u32);
-                let tile = match self.memo.iter().flatten().find(|(k, _)| *k == key) {
-                    Some((_, t)) => t.clone(),
-                    None => {
-                        let t = self.cache.tile(self.file, tx, level, x / tw, y / th)?;
-                        self.memo[self.next] = Some((key, t.clone()));
-                        self.next = (self.next + 1) % self.memo.len();
-                        t
-                    }
+                let (bx, by) = (x / tw, y / th);
+                let key = (level as u32, bx as u32, by as u32);
+                let nc = self.file.nch;
+                let read = |tile: &Tile, out: &mut [f32]| {
+                    tile.data
+                        .read(((y - by * th) * tile.w + (x - bx * tw)) * nc, out)
                 };
-                let i = ((y % th) * tile.w + (x % tw)) * self.file.nch;
-                tile.data.read(i, &mut out[..nch]);
+                // A memo hit reads the tile where the memo holds it: cloning its `Arc` per
+                // texel was two atomic operations on a count every thread's lookups share.
+                if let Some((_, tile)) = self.memo.iter().flatten().find(|(k, _)| *k == key) {
+                    read(tile, &mut out[..nch]);
+                    return Ok(());
+                }
+                let tile = self.cache.tile(self.file, tx, level, bx, by)?;
+                read(&tile, &mut out[..nch]);
+                self.memo[self.next] = Some((key, tile));
+                self.next = (self.next + 1) % self.memo.len();
                 Ok(())
             }
         }
