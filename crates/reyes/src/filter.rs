@@ -425,6 +425,10 @@ fn splat_separable(
             );
             continue;
         }
+        if cx.n <= 3 && cy.n <= 3 {
+            splat_cell_3x3(cell, first, (&cx, &cy), bw, (&fx, &fy), &mut add);
+            continue;
+        }
         for (j, &(sx, sy)) in cell.iter().enumerate() {
             let mut wx = [0.0f32; MAX_CELL_REACH];
             let mut any = false;
@@ -446,6 +450,45 @@ fn splat_separable(
                     if w != 0.0 {
                         add(row + kx, first + j, w);
                     }
+                }
+            }
+        }
+    }
+}
+
+/// [`splat_separable`]'s loop over one cell's samples when the cell reaches at most 3 × 3
+/// pixels (every filter of radius up to 1, the default `gaussian 2 2` among them): loops of a
+/// fixed length the compiler unrolls, the columns and rows beyond the cell's reach given a
+/// zero factor, so they add nothing. The same factors, products and calls, in the same order,
+/// as the general loop (`rib/sphere.rib` at 2×: the splat took 186 instructions per sample).
+#[inline]
+fn splat_cell_3x3(
+    cell: &[(f32, f32)],
+    first: usize,
+    (cx, cy): (&Reach, &Reach),
+    bw: usize,
+    (fx, fy): (&impl Fn(f32) -> f32, &impl Fn(f32) -> f32),
+    add: &mut impl FnMut(usize, usize, f32),
+) {
+    for (j, &(sx, sy)) in cell.iter().enumerate() {
+        let wx: [f32; 3] =
+            std::array::from_fn(|k| if k < cx.n { fx(sx - cx.centre[k]) } else { 0.0 });
+        if wx == [0.0; 3] {
+            continue;
+        }
+        for ky in 0..3 {
+            if ky == cy.n {
+                break;
+            }
+            let wyk = fy(sy - cy.centre[ky]);
+            if wyk == 0.0 {
+                continue;
+            }
+            let row = (cy.first + ky) * bw + cx.first;
+            for (kx, &wxk) in wx.iter().enumerate().take(cx.n) {
+                let w = wxk * wyk;
+                if w != 0.0 {
+                    add(row + kx, first + j, w);
                 }
             }
         }
