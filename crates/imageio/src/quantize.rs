@@ -484,6 +484,17 @@ pub(crate) fn quantize_image(
             .with_min_len(ROWS_PER_TASK)
             .for_each(|(y, (dst, src))| {
                 let y = origin[1].wrapping_add(y as u32);
+                if nc == 4 {
+                    // RGBA, the common display: a loop unrolled over the four channels.
+                    let pixels = dst.chunks_exact_mut(4).zip(src.chunks_exact(4));
+                    for (x, (d, s)) in pixels.enumerate() {
+                        let x = origin[0].wrapping_add(x as u32);
+                        for c in 0..4 {
+                            d[c] = q(s[c], x, y, c as u32);
+                        }
+                    }
+                    return;
+                }
                 for (x, (d, s)) in dst.chunks_mut(nc).zip(src.chunks(nc)).enumerate() {
                     let x = origin[0].wrapping_add(x as u32);
                     for (c, (d, &v)) in d.iter_mut().zip(s).enumerate() {
@@ -495,9 +506,14 @@ pub(crate) fn quantize_image(
     }
     let prepared = Quantizer::new(&quantize);
     let at = |v, x, y, c| prepared.at(v, x, y, c);
+    let integer = |v, x, y, c| prepared.at_integer(v, x, y, c);
     match quantize.sample_depth() {
-        SampleDepth::U8 => Samples::U8(integer_rows(image, &prepared, origin, |q| q as u8)),
-        SampleDepth::U16 => Samples::U16(integer_rows(image, &prepared, origin, |q| q as u16)),
+        SampleDepth::U8 => Samples::U8(rows(image, (row, nc), origin, |v, x, y, c| {
+            integer(v, x, y, c) as u8
+        })),
+        SampleDepth::U16 => Samples::U16(rows(image, (row, nc), origin, |v, x, y, c| {
+            integer(v, x, y, c) as u16
+        })),
         SampleDepth::Float => Samples::F32(rows(image, (row, nc), origin, |v, x, y, c| {
             at(v, x, y, c) as f32
         })),
@@ -508,42 +524,3 @@ pub(crate) fn quantize_image(
 /// at a time while the next band renders on the other threads: split per row, each call woke
 /// them for tasks of a few microseconds.
 const ROWS_PER_TASK: usize = 16;
-
-/// [`quantize_image`] for an unsigned integer type, row by row in parallel through
-/// [`Quantizer::at_integer`]; RGBA rows (the common display) go through a loop unrolled over
-/// the four channels.
-fn integer_rows<T: Send + Copy + Default>(
-    image: &crate::Image,
-    q: &Quantizer,
-    origin: [u32; 2],
-    store: impl Fn(f64) -> T + Sync,
-) -> Vec<T> {
-    use rayon::prelude::*;
-    let nc = image.channels.len().max(1);
-    let row = image.width.max(1) as usize * nc;
-    let mut out = vec![T::default(); image.data.len()];
-    out.par_chunks_mut(row)
-        .zip(image.data.par_chunks(row))
-        .enumerate()
-        .with_min_len(ROWS_PER_TASK)
-        .for_each(|(y, (dst, src))| {
-            let y = origin[1].wrapping_add(y as u32);
-            if nc == 4 {
-                let pixels = dst.chunks_exact_mut(4).zip(src.chunks_exact(4));
-                for (x, (d, s)) in pixels.enumerate() {
-                    let x = origin[0].wrapping_add(x as u32);
-                    for c in 0..4 {
-                        d[c] = store(q.at_integer(s[c], x, y, c as u32));
-                    }
-                }
-                return;
-            }
-            for (x, (d, s)) in dst.chunks_mut(nc).zip(src.chunks(nc)).enumerate() {
-                let x = origin[0].wrapping_add(x as u32);
-                for (c, (d, &v)) in d.iter_mut().zip(s).enumerate() {
-                    *d = store(q.at_integer(v, x, y, c as u32));
-                }
-            }
-        });
-    out
-}
