@@ -17,38 +17,37 @@
 /// `stride`-float records of its vertices `(i, j)`, `(i+1, j)`, `(i, j+1)` and `(i+1, j+1)`;
 /// `(nu−1)·(nv−1)·stride` floats, micropolygon `j·(nu−1) + i` first.
 pub(crate) fn micropolygon_means(values: &[f32], nu: usize, nv: usize, stride: usize) -> Vec<f32> {
-    if nu < 2 || nv < 2 || values.len() != nu * nv * stride {
-        return Vec::new();
-    }
-    let mut out = Vec::with_capacity((nu - 1) * (nv - 1) * stride);
-    for j in 0..nv - 1 {
-        for i in 0..nu - 1 {
-            let a = (j * nu + i) * stride;
-            let c = a + nu * stride;
-            for k in 0..stride {
-                // Summed as two pairs in a fixed order: four equal values give that value back
-                // exactly (an opaque 1.0 stays opaque, an object id stays that id).
-                let lower = values[a + k] + values[a + stride + k];
-                let upper = values[c + k] + values[c + stride + k];
-                out.push((lower + upper) * 0.25);
-            }
-        }
-    }
-    out
+    corner_means(values, nu, nv, stride)
 }
 
-/// [`micropolygon_means`] of a grid's per-vertex colours: the same sums per channel, in the
-/// same order, on the colours where they lie (flattening them into floats and back was two
-/// copies and a loop of unknown stride per grid; 2% of `rib/sphere.rib`'s instructions).
+/// [`micropolygon_means`] of a grid's per-vertex colours, taken on the colours where they lie
+/// (flattening them into floats and back was two copies and a loop of unknown stride per grid;
+/// 2% of `rib/sphere.rib`'s instructions): the same sums per channel, in the same order.
 pub(crate) fn micropolygon_colours(values: &[glam::Vec3], nu: usize, nv: usize) -> Vec<glam::Vec3> {
-    if nu < 2 || nv < 2 || values.len() != nu * nv {
+    corner_means(values, nu, nv, 1)
+}
+
+/// The one mean of both: per micropolygon and per `stride` element of a vertex's record,
+/// `((a + b) + (c + d)) · ¼` of the element at its four vertices.
+#[inline]
+fn corner_means<T>(values: &[T], nu: usize, nv: usize, stride: usize) -> Vec<T>
+where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<f32, Output = T>,
+{
+    if nu < 2 || nv < 2 || stride == 0 || values.len() != nu * nv * stride {
         return Vec::new();
     }
-    let mut out = Vec::with_capacity((nu - 1) * (nv - 1));
-    for (row, next) in values.chunks_exact(nu).zip(values.chunks_exact(nu).skip(1)) {
-        for (a, c) in row.windows(2).zip(next.windows(2)) {
-            let lower = a[0] + a[1];
-            let upper = c[0] + c[1];
+    let row = nu * stride;
+    let mut out = Vec::with_capacity((nu - 1) * (nv - 1) * stride);
+    for (lo, hi) in values
+        .chunks_exact(row)
+        .zip(values.chunks_exact(row).skip(1))
+    {
+        for a in 0..row - stride {
+            // Summed as two pairs in a fixed order: four equal values give that value back
+            // exactly (an opaque 1.0 stays opaque, an object id stays that id).
+            let lower = lo[a] + lo[a + stride];
+            let upper = hi[a] + hi[a + stride];
             out.push((lower + upper) * 0.25);
         }
     }
