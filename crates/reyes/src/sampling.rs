@@ -37,16 +37,21 @@ fn position(
     hashes: Option<(u32, u32, u32)>,
 ) -> (f32, f32) {
     let (jx, jy) = match hashes {
-        Some((frame, row, index)) => {
-            let seed = hash((px as u32).wrapping_mul(0x9e37_79b9) ^ row ^ index ^ frame);
-            (unit(hash(seed)), unit(hash(seed ^ 0x5bd1_e995)))
-        }
+        Some((frame, row, index)) => pixel_jitter(hash(
+            (px as u32).wrapping_mul(0x9e37_79b9) ^ row ^ index ^ frame,
+        )),
         None => (0.5, 0.5),
     };
     (
         px as f32 + (i as f32 + jx) / samples[0] as f32,
         py as f32 + (j as f32 + jy) / samples[1] as f32,
     )
+}
+
+/// A sample's jitter inside its stratum, `[0, 1)²`, from its seed.
+#[inline(always)]
+fn pixel_jitter(seed: u32) -> (f32, f32) {
+    (unit(hash(seed)), unit(hash(seed ^ 0x5bd1_e995)))
 }
 
 /// Appends the [`sample_position`]s of every pixel of `[x0, x1) × [y0, y1)`, row by row, each
@@ -92,8 +97,7 @@ pub fn pixel_sample_positions(
             }
             let pixel = (px as u32).wrapping_mul(0x9e37_79b9) ^ row;
             for (((q, &ix), &i), &j) in cell.iter_mut().zip(&index).zip(&si).zip(&sj) {
-                let seed = hash(pixel ^ ix);
-                let (jx, jy) = (unit(hash(seed)), unit(hash(seed ^ 0x5bd1_e995)));
+                let (jx, jy) = pixel_jitter(hash(pixel ^ ix));
                 *q = (fx + (i + jx) / nx, fy + (j + jy) / ny);
             }
         }
@@ -111,9 +115,15 @@ fn shuffled(n: usize, seed: u32) -> Vec<u32> {
 /// permutation can be made in place inside other records (no allocation per pixel).
 fn fisher_yates(n: usize, seed: u32, mut swap: impl FnMut(usize, usize)) {
     for k in (1..n).rev() {
-        let r = (hash(seed ^ hash(k as u32)) as u64 * (k as u64 + 1)) >> 32;
-        swap(k, r as usize);
+        swap(k, swap_partner(seed, hash(k as u32), k) as usize);
     }
+}
+
+/// The item in `0..=k` that step `k` of [`fisher_yates`] swaps item `k` with, from the
+/// shuffle's seed and the step's key `hash(k)`.
+#[inline(always)]
+fn swap_partner(seed: u32, key: u32, k: usize) -> u32 {
+    ((u64::from(hash(seed ^ key)) * (k as u64 + 1)) >> 32) as u32
 }
 
 /// One sample's time, lens position and time stratum, as [`sample_time_lens`] makes them.
@@ -263,7 +273,7 @@ pub fn sample_time_lens(
             swap_key
                 .iter()
                 .enumerate()
-                .map(|(k, &key)| ((u64::from(hash(seed ^ key)) * (k as u64 + 1)) >> 32) as u32),
+                .map(|(k, &key)| swap_partner(seed, key, k)),
         );
         for k in (1..n).rev() {
             mine.swap(k, swaps[k] as usize);
