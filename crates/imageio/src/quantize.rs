@@ -106,19 +106,23 @@ impl Quantizer {
         if self.float {
             return value as f64;
         }
+        let q = round(self.dithered(value, x, y, channel));
+        let ([lo, hi], [tlo, thi]) = (self.range, self.stored);
+        // A float type's range is ±∞: the second clamp keeps the value (never NaN here).
+        q.clamp(lo, hi).clamp(tlo, thi)
+    }
+
+    /// `one · value + ditheramplitude · random()` before rounding, a NaN value taken as 0.
+    #[inline]
+    fn dithered(&self, value: f32, x: u32, y: u32, channel: u32) -> f64 {
         let v = if value.is_nan() { 0.0 } else { value as f64 };
         let noise = match self.dither {
             Some(amplitude) => amplitude * dither_noise(x, y, channel),
             None => 0.0,
         };
-        let q = round(self.one * v + noise);
-        let ([lo, hi], [tlo, thi]) = (self.range, self.stored);
-        // A float type's range is ±∞: the second clamp keeps the value (never NaN here).
-        q.clamp(lo, hi).clamp(tlo, thi)
+        self.one * v + noise
     }
-}
 
-impl Quantizer {
     #[cfg(test)]
     fn sample_depth_is_float(&self) -> bool {
         !self.stored[1].is_finite()
@@ -135,13 +139,8 @@ impl Quantizer {
     #[inline]
     pub(crate) fn at_integer(&self, value: f32, x: u32, y: u32, channel: u32) -> f64 {
         debug_assert!(!self.float && self.stored[0] == 0.0 && self.stored[1].is_finite());
-        let v = if value.is_nan() { 0.0 } else { value as f64 };
-        let noise = match self.dither {
-            Some(amplitude) => amplitude * dither_noise(x, y, channel),
-            None => 0.0,
-        };
         let [lo, hi] = self.both;
-        let x = (self.one * v + noise).clamp(lo, hi);
+        let x = self.dithered(value, x, y, channel).clamp(lo, hi);
         let t = x as i64 as f64;
         t + if x - t >= 0.5 { 1.0 } else { 0.0 }
     }
