@@ -219,7 +219,8 @@ impl<'f> Hider<'f> {
                 sink.rows(rows);
             }
         });
-        if let Some(rows) = written.take() {
+        // The last band, unless the pass is void (the loop below starts the files over).
+        if let (Ok(_), Some(rows)) = (&lazy, written.take()) {
             sink.rows(rows);
         }
         // A displaced grid that left its bound needs the displacement-bound loop, which may
