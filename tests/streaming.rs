@@ -130,3 +130,35 @@ fn a_pass_that_starts_over_streams_the_final_image() {
     same_files_both_ways(&dir, rib, None, 3);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A frame so wide that the hider refines each band's pieces after the band before it is done
+/// (holding them while that band renders would cost too much; `OVERLAP_BYTES`) gives the
+/// pixels that a narrow crop window of it gives, whose bands are refined while the band before
+/// renders: refining ahead or not changes when pieces are made, never which.
+#[test]
+fn refining_ahead_or_after_gives_the_same_pixels() {
+    let dir = std::env::temp_dir().join(format!("illume-stream-ahead-{}", std::process::id()));
+    let rib = scene(&dir, "").replace("Format 150 110 1", "Format 7000 48 1");
+    let render_crop = |crop| render(&support::frames(&rib, crop)[0], &RenderSettings::default());
+    let wide = render_crop(None);
+    let narrow = render_crop(Some([0.45, 0.55, 0.0, 1.0]));
+    assert_eq!((wide.width, wide.height), (7000, 48));
+    assert!(narrow.width < 800 && narrow.x0 > 3000, "{}", narrow.width);
+    let covered = narrow.rgba.chunks_exact(4).filter(|p| p[3] > 0.0).count();
+    assert!(covered > 500, "only {covered} pixels covered");
+    for y in 0..narrow.height as usize {
+        for x in 0..narrow.width as usize {
+            let n = y * narrow.width as usize + x;
+            let w = (y + (narrow.y0 - wide.y0) as usize) * wide.width as usize
+                + x
+                + (narrow.x0 - wide.x0) as usize;
+            let bits = |v: &[f32]| v.iter().map(|c| c.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&narrow.rgba[4 * n..4 * n + 4]),
+                bits(&wide.rgba[4 * w..4 * w + 4]),
+                "pixel ({x}, {y}) of the crop"
+            );
+            assert_eq!(narrow.z[n].to_bits(), wide.z[w].to_bits());
+        }
+    }
+}

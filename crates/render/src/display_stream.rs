@@ -134,8 +134,9 @@ impl RowSink for DisplayStream<'_> {
             // rows, not the band's (a 5120-pixel band of 16 rows is 1.3 MB of float channels
             // and as much again quantized). The files are the same bytes: strips are cut from
             // the rows received, and dither is keyed on full-frame pixels.
-            for y in (0..r.height).step_by(ROWS_PER_WRITE as usize) {
-                let chunk = rows_of(&r, y, ROWS_PER_WRITE.min(r.height - y));
+            let step = rows_per_write(&r);
+            for y in (0..r.height).step_by(step as usize) {
+                let chunk = rows_of(&r, y, step.min(r.height - y));
                 for d in &mut self.displays {
                     let Ok((plan, Output::Rows(Some(out)))) = d else {
                         continue;
@@ -163,8 +164,18 @@ impl RowSink for DisplayStream<'_> {
     }
 }
 
-/// Rows a streamed display converts and writes at once (see [`DisplayStream::rows`]).
-const ROWS_PER_WRITE: u32 = 4;
+/// Rows of `r` a streamed display converts and writes at once (see [`DisplayStream::rows`]):
+/// as many as fit in [`BYTES_PER_WRITE`] of float pixels, at least one. Why a byte budget
+/// and not a row count: the copies are the peak heap's share of a wide frame's output (four
+/// 5120-pixel rows were 0.7 MB of copies and channels), while a narrow frame's rows are
+/// better written a few at a time than one call per row.
+fn rows_per_write(r: &Rendered) -> u32 {
+    let row_bytes = r.width as usize * (5 + r.aov_layout.stride) * std::mem::size_of::<f32>();
+    (BYTES_PER_WRITE / row_bytes.max(1)).clamp(1, r.height.max(1) as usize) as u32
+}
+
+/// See [`rows_per_write`].
+const BYTES_PER_WRITE: usize = 64 << 10;
 
 /// Rows `y..y + n` of the band `r` (a copy).
 fn rows_of(r: &Rendered, y: u32, n: u32) -> Rendered {

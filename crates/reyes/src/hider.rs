@@ -202,23 +202,32 @@ impl<'f> Hider<'f> {
         // A band's rows go to the sink while the next band renders, when they are small
         // enough to hold that long (`OVERLAP_BYTES`); larger ones are written at once.
         let mut written: Option<PixelRows> = None;
-        let lazy = LazyBands::new(frame, &refiner, &layout).render(|pieces, lists, grids, by| {
-            let rows = match written.take() {
-                Some(prev) => {
-                    rayon::join(
-                        || sink.rows(prev),
-                        || bands.render(by, pieces, lists, grids),
-                    )
-                    .1
+        // The next band's pieces are refined while a band renders only when its rows may be
+        // held as well: both overlaps hold a band's worth of memory more.
+        let [cx0, cx1, _, _] = cam.crop;
+        let band_bytes = (cx1 - cx0) as usize
+            * opts.bucket_size[1].max(1) as usize
+            * (5 + aov.stride)
+            * std::mem::size_of::<f32>();
+        let ahead = band_bytes <= OVERLAP_BYTES;
+        let lazy =
+            LazyBands::new(frame, &refiner, &layout).render(ahead, |pieces, lists, grids, by| {
+                let rows = match written.take() {
+                    Some(prev) => {
+                        rayon::join(
+                            || sink.rows(prev),
+                            || bands.render(by, pieces, lists, grids),
+                        )
+                        .1
+                    }
+                    None => bands.render(by, pieces, lists, grids),
+                };
+                if rows_bytes(&rows) <= OVERLAP_BYTES {
+                    written = Some(rows);
+                } else {
+                    sink.rows(rows);
                 }
-                None => bands.render(by, pieces, lists, grids),
-            };
-            if rows_bytes(&rows) <= OVERLAP_BYTES {
-                written = Some(rows);
-            } else {
-                sink.rows(rows);
-            }
-        });
+            });
         // The last band, unless the pass is void (the loop below starts the files over).
         if let (Ok(_), Some(rows)) = (&lazy, written.take()) {
             sink.rows(rows);
@@ -299,7 +308,8 @@ impl<'f> Hider<'f> {
 }
 
 /// The largest band of rows [`Hider::render_to`] holds while the next band renders, to write
-/// it meanwhile. Writing (display channels, quantizing, compressing) was serial work between
+/// it meanwhile (and the widest band, in these bytes, whose next band's pieces are refined
+/// while it renders: [`LazyBands::render`]). Writing (display channels, quantizing, compressing) was serial work between
 /// bands that left the other threads idle: 12% of `rib/sphere.rib`'s wall time at 2× and 2
 /// threads. Holding a band longer costs its rows once more (a 960-pixel-wide band of 16 rows
 /// is 300 KB); above this a band is written at once, so the peak does not grow with the

@@ -191,28 +191,33 @@ impl<'f, 'l> LazyBands<'f, 'l> {
     /// lists, the pieces' grids and the band index). Stops with [`Overflowed`] after the
     /// first band in which a displaced grid left its bound.
     ///
-    /// The next band's waiting items are refined while a band renders (a task the idle
-    /// worker picks up): they are final by then, since refining band `by` defers items only
-    /// to later bands, and their refine depends on the items alone. With one primitive or a
-    /// few, a band's refine is one thread's work that held the others idle (`rib/sphere.rib`
-    /// at 2×: 7% of the wall time at 2 threads). What it holds in addition is the next band's
-    /// new pieces, not its grids.
+    /// With `ahead`, the next band's waiting items are refined while a band renders (a task
+    /// the idle worker picks up): they are final by then, since refining band `by` defers
+    /// items only to later bands, and their refine depends on the items alone. With one
+    /// primitive or a few, a band's refine is one thread's work that held the others idle
+    /// (`rib/sphere.rib` at 2×: 7% of the wall time at 2 threads). What it holds in addition
+    /// is the next band's new pieces, not its grids: in a wide frame those are many (5120 ×
+    /// 3840 `rib/bench/spotlight.rib`: 0.6 MB of a 12 MB heap), and a wide band has items
+    /// enough to refine in parallel after it, so the caller turns it off there.
     pub fn render(
         mut self,
+        ahead: bool,
         mut band: impl FnMut(&[Piece], &[Vec<usize>], &[GridSlot], usize),
     ) -> Result<RefineReport, Overflowed> {
         let count = self.layout.band_count();
-        let first = std::mem::take(&mut self.waiting[0]);
-        self.waiting_count -= first.len();
-        let mut next = Some(self.refine_items(0, first));
+        let mut next = None;
         for by in 0..count {
-            let refined = next
-                .take()
-                .expect("each band's items are refined before it renders");
+            // Refined during the band before, or now.
+            let refined = match next.take() {
+                Some(refined) => refined,
+                None => {
+                    let items = self.take_waiting(by);
+                    self.refine_items(by, items)
+                }
+            };
             self.admit(by, refined);
             let lists = self.layout.band_lists(by, &self.pieces);
-            let later = (by + 1 < count).then(|| std::mem::take(&mut self.waiting[by + 1]));
-            self.waiting_count -= later.as_ref().map_or(0, Vec::len);
+            let later = (ahead && by + 1 < count).then(|| self.take_waiting(by + 1));
             let this = &self;
             rayon::in_place_scope(|s| {
                 if let Some(items) = later {
@@ -223,12 +228,19 @@ impl<'f, 'l> LazyBands<'f, 'l> {
             if self.grids.iter().any(|g| g.overflow.get().is_some()) {
                 return Err(Overflowed);
             }
-            let ahead = next.as_ref().map_or(0, |r| r.fresh.len());
-            let live = (self.pieces.len() + ahead + self.waiting_count) as u64;
+            let refined_ahead = next.as_ref().map_or(0, |r| r.fresh.len());
+            let live = (self.pieces.len() + refined_ahead + self.waiting_count) as u64;
             self.report.peak_live_pieces = self.report.peak_live_pieces.max(live);
             self.retire(by);
         }
         Ok(self.report)
+    }
+
+    /// The items waiting for band `by`, taken.
+    fn take_waiting(&mut self, by: usize) -> Vec<Item<'f>> {
+        let items = std::mem::take(&mut self.waiting[by]);
+        self.waiting_count -= items.len();
+        items
     }
 
     /// Refines `items` (those waiting for band `by`) until every piece is dice-ready or waits
