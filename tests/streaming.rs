@@ -131,21 +131,53 @@ fn a_pass_that_starts_over_streams_the_final_image() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// A frame so wide that the hider refines each band's pieces after the band before it is done
-/// (holding them while that band renders would cost too much; `OVERLAP_BYTES`) gives the
-/// pixels that a narrow crop window of it gives, whose bands are refined while the band before
-/// renders: refining ahead or not changes when pieces are made, never which.
+/// A frame so wide that the hider renders it in column blocks (1024 pixels wide, each refined
+/// band after band without refining ahead: holding the next band's pieces would cost too much)
+/// gives the pixels that a narrower crop window of it gives, rendered as one block whose bands
+/// are refined ahead, with spheres on the block borders at x = 3072 and 4096 (their grids are
+/// diced in both blocks): blocks and refining ahead change when pieces and grids are made,
+/// never which or what they shade.
 #[test]
-fn refining_ahead_or_after_gives_the_same_pixels() {
-    let dir = std::env::temp_dir().join(format!("illume-stream-ahead-{}", std::process::id()));
-    let rib = scene(&dir, "").replace("Format 150 110 1", "Format 7000 48 1");
+fn column_blocks_and_refining_ahead_give_the_pixels_of_one_crop_window() {
+    // Spheres at camera z = 5 whose centres project to raster x = 3072 and 4096 (and two
+    // more at 1024 and 2048): x_cam = (x − 3500) / 24 · 5·tan 20°.
+    let at = |x: f64| (x - 3500.0) / 24.0 * 5.0 * 20f64.to_radians().tan();
+    let spheres: String = [1024.0, 2048.0, 3072.0, 4096.0]
+        .iter()
+        .map(|&x| {
+            format!(
+                "AttributeBegin\nTranslate {} 0.3 5\nSphere 0.9 -0.9 0.9 360\nAttributeEnd\n",
+                at(x)
+            )
+        })
+        .collect();
+    let rib = format!(
+        "Format 7000 48 1\nPixelSamples 2 2\nOption \"limits\" \"bucketsize\" [16 8]\n\
+         Projection \"perspective\" \"fov\" [40]\nWorldBegin\n\
+         LightSource \"distantlight\" 1 \"from\" [0 1 -1] \"to\" [0 0 0]\n\
+         Surface \"plastic\"\nColor [0.8 0.4 0.2]\n{spheres}WorldEnd\n"
+    );
     let render_crop = |crop| render(&support::frames(&rib, crop)[0], &RenderSettings::default());
     let wide = render_crop(None);
-    let narrow = render_crop(Some([0.45, 0.55, 0.0, 1.0]));
+    let narrow = render_crop(Some([0.4, 0.65, 0.0, 1.0]));
     assert_eq!((wide.width, wide.height), (7000, 48));
-    assert!(narrow.width < 800 && narrow.x0 > 3000, "{}", narrow.width);
-    let covered = narrow.rgba.chunks_exact(4).filter(|p| p[3] > 0.0).count();
-    assert!(covered > 500, "only {covered} pixels covered");
+    assert!(
+        narrow.x0 < 3050 && narrow.x0 + narrow.width > 4120,
+        "{}",
+        narrow.x0
+    );
+    // One block: at most `illume_reyes::BLOCKS_ABOVE` (2048) pixels wide.
+    assert!(narrow.width <= 2048, "{}", narrow.width);
+    for border in [3072, 4096] {
+        let x = (border - narrow.x0) as usize;
+        let covered = (0..narrow.height as usize)
+            .filter(|y| narrow.rgba[4 * (y * narrow.width as usize + x) + 3] > 0.0)
+            .count();
+        assert!(
+            covered > 10,
+            "only {covered} pixels covered at x = {border}"
+        );
+    }
     for y in 0..narrow.height as usize {
         for x in 0..narrow.width as usize {
             let n = y * narrow.width as usize + x;

@@ -244,6 +244,21 @@ pub fn write_display_cropped(
     }
 }
 
+/// [`write_display_cropped`] for a `tiff` display of a frame rendered in column blocks
+/// `tile_width` pixels wide (a multiple of 16): a tiled TIFF, its tiles that wide and 16 rows
+/// tall, column of tiles after column of tiles: the file [`TiffRows::create_tiled`] streams
+/// from such a frame, byte for byte.
+pub fn write_tiff_tiled(
+    path: &Path,
+    image: &Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+    tile_width: u32,
+) -> Result<(), ImageError> {
+    image.validate(path)?;
+    tiff_file::write_tiff_tiled(path, image, quantize, origin, tile_width)
+}
+
 /// Reads TIFF, PNG, JPEG, OpenEXR or PRMan zfile into a float image, choosing the decoder
 /// from the file's first bytes (not its name). Integer samples are normalised to [0, 1].
 pub fn read_image(path: &Path) -> Result<Image, ImageError> {

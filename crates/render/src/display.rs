@@ -1,8 +1,10 @@
 //! From the rendered float image to the frame's `Display`s through `illume-imageio`.
 //! No `Display` means `ri.tif` (rgba); `framebuffer` writes a PNG named after the display.
 use crate::Rendered;
-use illume_imageio::{write_display_cropped, DepthMatrices, Image, ImageError, Quantize};
-use illume_reyes::AovLayout;
+use illume_imageio::{
+    write_display_cropped, write_tiff_tiled, DepthMatrices, Image, ImageError, Quantize,
+};
+use illume_reyes::{column_block_width, AovLayout};
 use illume_ri::{transform, DisplaySpec, Frame};
 use std::path::PathBuf;
 
@@ -226,14 +228,19 @@ impl DisplayPlan {
             // Dither is keyed on full-frame pixels, so crops rendered apart (`--crop`,
             // render farms) quantize exactly as the same pixels of a full render.
             let depth = depth_matrices(frame);
-            write_display_cropped(
-                &self.path,
-                &self.kind,
-                &image,
-                self.quantize,
-                Some(&depth),
-                [r.x0, r.y0],
-            )?;
+            let origin = [r.x0, r.y0];
+            // The file a streamed display writes from a window rendered in column blocks.
+            match column_block_width(image.width).filter(|_| self.streams()) {
+                Some(w) => write_tiff_tiled(&self.path, &image, self.quantize, origin, w)?,
+                None => write_display_cropped(
+                    &self.path,
+                    &self.kind,
+                    &image,
+                    self.quantize,
+                    Some(&depth),
+                    origin,
+                )?,
+            }
         }
         Ok(self.written())
     }

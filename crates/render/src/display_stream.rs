@@ -1,13 +1,15 @@
 //! Streaming output (issue 21): the frame's displays fed row band by row band while the hider
 //! renders, so memory does not grow with the frame. A TIFF display writes each strip as soon
-//! as its rows arrive ([`TiffRows`]). The other kinds need the whole frame at the end (PNG's
+//! as its rows arrive ([`TiffRows`]); a window rendered in column blocks
+//! ([`illume_reyes::column_block_width`]) makes a tiled TIFF, each tile written as soon as its
+//! block's rows are in. The other kinds need the whole frame at the end (PNG's
 //! one zlib stream as `write_displays` makes it, OpenEXR, zfile, shadow maps, framebuffer
 //! pictures): they share one whole-frame buffer, kept only when such a display exists.
 //! Every file is the one [`crate::write_displays`] writes from the whole image, byte for byte.
 use crate::display::{plan_displays, DisplayError, DisplayPlan, WrittenDisplay};
 use crate::Rendered;
 use illume_imageio::TiffRows;
-use illume_reyes::{AovLayout, FrameCollector, PixelRows, RowSink};
+use illume_reyes::{column_block_width, AovLayout, FrameCollector, PixelRows, RowSink};
 use illume_ri::Frame;
 
 /// One display being written.
@@ -111,13 +113,15 @@ impl RowSink for DisplayStream<'_> {
                     continue;
                 }
             };
-            match TiffRows::create(
-                &plan.path,
-                [cx1 - cx0, cy1 - cy0],
-                &channels,
-                plan.quantize,
-                [cx0, cy0],
-            ) {
+            let (size, origin) = ([cx1 - cx0, cy1 - cy0], [cx0, cy0]);
+            // A window rendered in column blocks arrives a block at a time: a tiled file.
+            let file = match column_block_width(size[0]) {
+                Some(w) => {
+                    TiffRows::create_tiled(&plan.path, size, &channels, plan.quantize, origin, w)
+                }
+                None => TiffRows::create(&plan.path, size, &channels, plan.quantize, origin),
+            };
+            match file {
                 Ok(r) => *rows = Some(Box::new(r)),
                 Err(e) => *d = Err(e.into()),
             }
@@ -141,9 +145,10 @@ impl RowSink for DisplayStream<'_> {
                     let Ok((plan, Output::Rows(Some(out)))) = d else {
                         continue;
                     };
+                    let x = chunk.x0 - self.crop[0];
                     if let Err(e) = plan
                         .image(&chunk)
-                        .and_then(|image| out.write_rows(&image).map_err(DisplayError::from))
+                        .and_then(|image| out.write_block(&image, x).map_err(DisplayError::from))
                     {
                         *d = Err(e);
                     }

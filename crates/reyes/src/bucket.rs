@@ -44,6 +44,16 @@ impl BucketLayout {
         }
     }
 
+    /// The crop window x0 x1 y0 y1 (pixels) the buckets cover.
+    pub fn crop(&self) -> [u32; 4] {
+        self.crop
+    }
+
+    /// The height of a bucket (pixels): a band's rows.
+    pub fn bucket_height(&self) -> u32 {
+        self.size[1]
+    }
+
     /// The number of buckets.
     pub fn bucket_count(&self) -> usize {
         self.count[0] * self.count[1]

@@ -7,6 +7,7 @@
 //! that go straight to a [`RowSink`] (`row_sink.rs`), so the film holds one band at a time.
 use crate::aov::AovLayout;
 use crate::bucket::{BandRenderer, BucketLayout, GridSlot};
+use crate::column_blocks::column_blocks;
 use crate::displacement_bound::render_until_bounded;
 use crate::film::Film;
 use crate::lazy_bands::{frame_moves, refine_frame, LazyBands, Overflowed, RefineReport};
@@ -185,7 +186,12 @@ impl<'f> Hider<'f> {
                 && opts.depth_filter != illume_ri::DepthFilter::Midpoint,
         };
         let counters = Counters::default();
-        let bands = BandRenderer {
+        let blocks = column_blocks(cam.crop);
+        let total = (blocks.iter())
+            .map(|b| BucketLayout::new(*b, opts.bucket_size, margin).bucket_count())
+            .sum();
+        // The frame's band renderer; each block's is this with the block's layout.
+        let whole = BandRenderer {
             frame,
             shader,
             layout: &layout,
@@ -196,48 +202,41 @@ impl<'f> Hider<'f> {
             aov: &aov,
             progress,
             done: AtomicUsize::new(0),
-            total: AtomicUsize::new(layout.bucket_count()),
+            total: AtomicUsize::new(total),
         };
         sink.begin_pass();
-        // A band's rows go to the sink while the next band renders, when they are small
-        // enough to hold that long (`OVERLAP_BYTES`); larger ones are written at once.
-        let mut written: Option<PixelRows> = None;
-        // The next band's pieces are refined while a band renders only when its rows may be
-        // held as well: both overlaps hold a band's worth of memory more.
-        let [cx0, cx1, _, _] = cam.crop;
-        let band_bytes = (cx1 - cx0) as usize
-            * opts.bucket_size[1].max(1) as usize
-            * (5 + aov.stride)
-            * std::mem::size_of::<f32>();
-        let ahead = band_bytes <= OVERLAP_BYTES;
-        let lazy =
-            LazyBands::new(frame, &refiner, &layout).render(ahead, |pieces, lists, grids, by| {
-                let rows = match written.take() {
-                    Some(prev) => {
-                        rayon::join(
-                            || sink.rows(prev),
-                            || bands.render(by, pieces, lists, grids),
-                        )
-                        .1
-                    }
-                    None => bands.render(by, pieces, lists, grids),
-                };
-                if rows_bytes(&rows) <= OVERLAP_BYTES {
-                    written = Some(rows);
-                } else {
-                    sink.rows(rows);
+        let (mut report, mut done, mut lazy) = (RefineReport::default(), 0, Ok(()));
+        for block in blocks {
+            let layout = BucketLayout::new(block, opts.bucket_size, margin);
+            // The block refined as its own crop window: pieces outside it are culled.
+            let mut block_refiner = refiner.clone();
+            let [bx0, bx1, by0, by1] = block.map(|v| v as f32);
+            block_refiner.region = [bx0 - margin, bx1 + margin, by0 - margin, by1 + margin];
+            let bands = BandRenderer {
+                layout: &layout,
+                done: AtomicUsize::new(done),
+                total: AtomicUsize::new(total),
+                ..whole
+            };
+            let rendered = render_block(frame, &block_refiner, &bands, &aov, sink);
+            done = bands.done.load(Relaxed);
+            match rendered {
+                Ok(r) => report.add_block(r),
+                Err(o) => {
+                    lazy = Err(o);
+                    break;
                 }
-            });
-        // The last band, unless the pass is void (the loop below starts the files over).
-        if let (Ok(_), Some(rows)) = (&lazy, written.take()) {
-            sink.rows(rows);
+            }
         }
         // A displaced grid that left its bound needs the displacement-bound loop, which may
-        // grow any piece and render again: refine the whole frame up front and start over.
-        let report = lazy.unwrap_or_else(|Overflowed| {
+        // grow any piece and render again: refine the whole frame up front and start over
+        // (in bands as wide as the crop window).
+        if let Err(Overflowed) = lazy {
             // Progress counts the lazy pass's buckets as done; the loop adds its own passes.
-            bands.total.store(bands.done.load(Relaxed), Relaxed);
-            let mut report = RefineReport::default();
+            let bands = whole;
+            bands.done.store(done, Relaxed);
+            bands.total.store(done, Relaxed);
+            report = RefineReport::default();
             let mut pieces = refine_frame(frame, &refiner, &mut report);
             warnings.extend(render_until_bounded(
                 frame,
@@ -253,8 +252,7 @@ impl<'f> Hider<'f> {
                     }
                 },
             ));
-            report
-        });
+        }
         let mut dropped = dropped_warnings(frame, &report);
         if report.late_pieces > 0 {
             dropped.push(Diagnostic {
@@ -270,28 +268,7 @@ impl<'f> Hider<'f> {
         }
         warnings.splice(refine_warnings_at..refine_warnings_at, dropped);
         let [cx0, cx1, cy0, cy1] = cam.crop;
-        let aov_image_bytes = ((cx1 - cx0) as u64) * ((cy1 - cy0) as u64) * aov.stride as u64 * 4;
-        let stats = Stats {
-            primitives: frame.primitives.len() as u64,
-            pieces: report.pieces,
-            grids: counters.grids.load(Relaxed),
-            micropolygons: counters.micropolygons.load(Relaxed),
-            samples: counters.samples.load(Relaxed),
-            culled_pieces: report.culled,
-            occluded_grids: counters.occluded.load(Relaxed),
-            split_seconds: report.split_ns as f64 * 1e-9,
-            dice_seconds: counters.dice_ns.load(Relaxed) as f64 * 1e-9,
-            shade_seconds: counters.shade_ns.load(Relaxed) as f64 * 1e-9,
-            sample_seconds: counters.sample_ns.load(Relaxed) as f64 * 1e-9,
-            filter_seconds: counters.filter_ns.load(Relaxed) as f64 * 1e-9,
-            // The hider does not see shaded values: the driver counts them.
-            nonfinite: 0,
-            aov_stride: aov.stride as u64,
-            aov_bucket_peak_bytes: counters.aov_peak_bytes.load(Relaxed),
-            aov_image_bytes,
-            peak_live_pieces: report.peak_live_pieces,
-            peak_live_grids: counters.peak_grids.load(Relaxed),
-        };
+        let stats = frame_stats(frame, &report, &counters, aov.stride);
         Rendered {
             x0: cx0,
             y0: cy0,
@@ -305,6 +282,77 @@ impl<'f> Hider<'f> {
             warnings,
         }
     }
+}
+
+/// The frame's statistics from what refining reported and the buckets counted.
+fn frame_stats(frame: &Frame, report: &RefineReport, counters: &Counters, stride: usize) -> Stats {
+    let [cx0, cx1, cy0, cy1] = frame.camera.crop;
+    let aov_image_bytes = ((cx1 - cx0) as u64) * ((cy1 - cy0) as u64) * stride as u64 * 4;
+    Stats {
+        primitives: frame.primitives.len() as u64,
+        pieces: report.pieces,
+        grids: counters.grids.load(Relaxed),
+        micropolygons: counters.micropolygons.load(Relaxed),
+        samples: counters.samples.load(Relaxed),
+        culled_pieces: report.culled,
+        occluded_grids: counters.occluded.load(Relaxed),
+        split_seconds: report.split_ns as f64 * 1e-9,
+        dice_seconds: counters.dice_ns.load(Relaxed) as f64 * 1e-9,
+        shade_seconds: counters.shade_ns.load(Relaxed) as f64 * 1e-9,
+        sample_seconds: counters.sample_ns.load(Relaxed) as f64 * 1e-9,
+        filter_seconds: counters.filter_ns.load(Relaxed) as f64 * 1e-9,
+        // The hider does not see shaded values: the driver counts them.
+        nonfinite: 0,
+        aov_stride: stride as u64,
+        aov_bucket_peak_bytes: counters.aov_peak_bytes.load(Relaxed),
+        aov_image_bytes,
+        peak_live_pieces: report.peak_live_pieces,
+        peak_live_grids: counters.peak_grids.load(Relaxed),
+    }
+}
+
+/// One crop window (the frame's, or a column block of it) rendered band by band with lazy
+/// refinement into `sink`. A band's rows go to the sink while the next band renders, when they
+/// are small enough to hold that long ([`OVERLAP_BYTES`]; larger ones are written at once), and
+/// the next band's pieces are refined meanwhile only then: both overlaps hold a band's worth of
+/// memory more. [`Overflowed`] when a displaced grid left its bound (the pass is then void).
+fn render_block(
+    frame: &Frame,
+    refiner: &Refiner,
+    bands: &BandRenderer,
+    aov: &AovLayout,
+    sink: &mut (dyn RowSink + Send),
+) -> Result<RefineReport, Overflowed> {
+    let layout = bands.layout;
+    let [x0, x1, _, _] = layout.crop();
+    let band_bytes = (x1 - x0) as usize
+        * layout.bucket_height() as usize
+        * (5 + aov.stride)
+        * std::mem::size_of::<f32>();
+    let ahead = band_bytes <= OVERLAP_BYTES;
+    let mut written: Option<PixelRows> = None;
+    let lazy = LazyBands::new(frame, refiner, layout).render(ahead, |pieces, lists, grids, by| {
+        let rows = match written.take() {
+            Some(prev) => {
+                rayon::join(
+                    || sink.rows(prev),
+                    || bands.render(by, pieces, lists, grids),
+                )
+                .1
+            }
+            None => bands.render(by, pieces, lists, grids),
+        };
+        if rows_bytes(&rows) <= OVERLAP_BYTES {
+            written = Some(rows);
+        } else {
+            sink.rows(rows);
+        }
+    });
+    // The last band, unless the pass is void (the caller starts the files over).
+    if let (Ok(_), Some(rows)) = (&lazy, written.take()) {
+        sink.rows(rows);
+    }
+    lazy
 }
 
 /// The largest band of rows [`Hider::render_to`] holds while the next band renders, to write

@@ -57,6 +57,12 @@ impl RefineReport {
         self.late_pieces += other.late_pieces;
     }
 
+    /// Adds the report of another column block's render (of peaks, the larger).
+    pub(crate) fn add_block(&mut self, other: RefineReport) {
+        self.peak_live_pieces = self.peak_live_pieces.max(other.peak_live_pieces);
+        self.merge(other);
+    }
+
     fn add(&mut self, prim_index: usize, counts: &RefineCounts) {
         self.culled += counts.culled;
         if counts.eye_dropped > 0 {

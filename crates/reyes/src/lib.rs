@@ -9,6 +9,7 @@
 
 mod aov;
 mod bucket;
+mod column_blocks;
 mod csg;
 mod csg_eye;
 mod dice;
@@ -34,6 +35,7 @@ mod visible;
 mod visible_lists;
 
 pub use aov::{display_filter, AovChannel, AovLayout};
+pub use column_blocks::{column_block_width, BLOCKS_ABOVE, BLOCK_WIDTH};
 pub use film::PixelBlock;
 pub use filter::PixelFilter;
 pub use hider::Hider;

@@ -168,6 +168,7 @@ pub(crate) struct Refined<'a> {
     pub counts: RefineCounts,
 }
 
+#[derive(Clone)]
 pub(crate) struct Refiner<'c> {
     pub camera: &'c Camera,
     /// Region (pixels, with filter margin) outside of which pieces are culled.

@@ -20,7 +20,9 @@ pub struct PixelRows {
 }
 
 /// Where the hider delivers finished rows. Rows arrive in order, each band right below the
-/// previous one, covering the crop window exactly once per pass.
+/// previous one, covering the crop window exactly once per pass: bands as wide as the window,
+/// or, for a window rendered in column blocks ([`crate::column_block_width`]), each block's
+/// bands top to bottom, block after block from the left.
 pub trait RowSink {
     /// A pass over the frame starts. The displacement-bound loop may render the frame again
     /// (a displaced grid left its bound): then everything delivered since the previous call
@@ -32,6 +34,7 @@ pub trait RowSink {
 
 /// A sink that keeps the whole crop window (`Rendered`'s buffers).
 pub struct FrameCollector {
+    x0: u32,
     width: u32,
     y0: u32,
     stride: usize,
@@ -46,6 +49,7 @@ impl FrameCollector {
         let [cx0, cx1, cy0, cy1] = crop;
         let pixels = ((cx1 - cx0) * (cy1 - cy0)) as usize;
         FrameCollector {
+            x0: cx0,
             width: cx1 - cx0,
             y0: cy0,
             stride,
@@ -60,11 +64,15 @@ impl RowSink for FrameCollector {
     fn begin_pass(&mut self) {}
 
     fn rows(&mut self, rows: PixelRows) {
-        let o = ((rows.y0 - self.y0) * self.width) as usize;
-        let n = (rows.width * rows.height) as usize;
-        self.rgba[o * 4..(o + n) * 4].copy_from_slice(&rows.rgba);
-        self.z[o..o + n].copy_from_slice(&rows.z);
-        let s = self.stride;
-        self.aov[o * s..(o + n) * s].copy_from_slice(&rows.aov);
+        let (w, s) = (rows.width as usize, self.stride);
+        for r in 0..rows.height as usize {
+            let o = (rows.y0 - self.y0) as usize * self.width as usize
+                + r * self.width as usize
+                + (rows.x0 - self.x0) as usize;
+            let src = r * w..(r + 1) * w;
+            self.rgba[o * 4..(o + w) * 4].copy_from_slice(&rows.rgba[src.start * 4..src.end * 4]);
+            self.z[o..o + w].copy_from_slice(&rows.z[src.clone()]);
+            self.aov[o * s..(o + w) * s].copy_from_slice(&rows.aov[src.start * s..src.end * s]);
+        }
     }
 }

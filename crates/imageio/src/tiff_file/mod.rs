@@ -5,7 +5,8 @@
 //! extra samples (alpha, depth) and no `ExtraSamples` tag, and a depth display wants float and
 //! 8-bit channels chosen per channel set.
 //!
-//! Writer: one IFD, little-endian, contiguous samples, Deflate-compressed strips of about 64 KiB,
+//! Writer: one IFD, little-endian, contiguous samples, Deflate-compressed strips of about 64 KiB
+//! (or, for a frame rendered in column blocks, tiles a block wide and 16 rows tall: `tiles`),
 //! `SampleFormat` 1 (unsigned) or 3 (IEEE float), `ExtraSamples` 1 (associated alpha — RenderMan
 //! colour is premultiplied) for `a` and 0 (unspecified) for `z` and others, and the channel names
 //! in `ImageDescription` as `Illume channels r,g,b,z` so a round trip restores them.
@@ -26,11 +27,12 @@ mod ifd;
 mod photometric;
 mod read;
 mod samples;
+mod tiles;
 mod write;
 
 pub(crate) use read::read_tiff;
-pub(crate) use write::write_tiff;
 pub use write::TiffRows;
+pub(crate) use write::{write_tiff, write_tiff_tiled};
 
 const TAG_IMAGE_WIDTH: u16 = 256;
 const TAG_IMAGE_LENGTH: u16 = 257;

@@ -242,3 +242,120 @@ fn an_unfinished_stream_leaves_no_file_and_too_many_rows_are_an_error() {
     assert!(left.is_empty(), "left behind: {left:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Columns `x0..x1` of `image`.
+fn columns_of(image: &crate::Image, x0: u32, x1: u32) -> crate::Image {
+    let nc = image.channels.len();
+    crate::Image {
+        width: x1 - x0,
+        height: image.height,
+        channels: image.channels.clone(),
+        data: image
+            .data
+            .chunks_exact(image.width as usize * nc)
+            .flat_map(|row| &row[x0 as usize * nc..x1 as usize * nc])
+            .copied()
+            .collect(),
+    }
+}
+
+/// A tiled file streamed a column block at a time, each in bands of any height, is the file
+/// `write_tiff_tiled` writes from the whole image, and it reads back as the striped file does:
+/// the same quantized values, the padding of the edge tiles (the last column is 300 − 256 = 44
+/// pixels wide, the last row of tiles 45 − 32 = 13 rows tall) cropped away.
+#[test]
+fn a_tiled_file_streamed_by_column_blocks_is_the_whole_image_file_and_reads_back() {
+    let dir = std::env::temp_dir().join(format!("illume-tifftiles-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (channels, q) in [
+        (&["r", "g", "b", "a"][..], crate::Quantize::RGBA_DEFAULT),
+        (&["z"][..], crate::Quantize::FLOAT),
+        (&["r", "g", "b"][..], crate::Quantize::FLOAT),
+    ] {
+        let image = gradient(300, 45, channels);
+        let (whole, striped) = (dir.join("whole.tif"), dir.join("striped.tif"));
+        super::write_tiff_tiled(&whole, &image, q, [5, 9], 128).unwrap();
+        super::write_tiff(&striped, &image, q, [5, 9]).unwrap();
+        let (a, b) = (
+            super::read_tiff(&whole).unwrap(),
+            super::read_tiff(&striped).unwrap(),
+        );
+        assert_eq!((a.width, a.height, &a.channels), (300, 45, &b.channels));
+        assert!(
+            a.data
+                .iter()
+                .zip(&b.data)
+                .all(|(x, y)| x.to_bits() == y.to_bits()),
+            "{channels:?}: tiled and striped files read back differently"
+        );
+        for bands in [&[45][..], &[16, 16, 13][..], &[7, 30, 8][..]] {
+            let streamed = dir.join("streamed.tif");
+            let mut w = super::TiffRows::create_tiled(
+                &streamed,
+                [300, 45],
+                &image.channels,
+                q,
+                [5, 9],
+                128,
+            )
+            .unwrap();
+            for x in [0, 128, 256] {
+                let block = columns_of(&image, x, (x + 128).min(300));
+                let mut y = 0;
+                for b in bands {
+                    w.write_block(&rows_of(&block, y, y + b), x).unwrap();
+                    y += b;
+                }
+            }
+            w.finish().unwrap();
+            assert!(
+                std::fs::read(&whole).unwrap() == std::fs::read(&streamed).unwrap(),
+                "{channels:?} in bands {bands:?}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Blocks that are not whole columns of tiles at their next row are refused, and a file
+/// missing a column's rows is not finished.
+#[test]
+fn a_tiled_file_takes_only_whole_tile_columns_in_order() {
+    let dir = std::env::temp_dir().join(format!("illume-tifftiles-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("t.tif");
+    let image = gradient(40, 20, &["r", "g", "b"]);
+    let q = crate::Quantize::RGBA_DEFAULT;
+    let names = image.channels.clone();
+    assert!(super::TiffRows::create_tiled(&path, [40, 20], &names, q, [0, 0], 24).is_err());
+    let mut w = super::TiffRows::create_tiled(&path, [40, 20], &names, q, [0, 0], 16).unwrap();
+    assert!(
+        w.write_block(&columns_of(&image, 8, 24), 8).is_err(),
+        "off the tile grid"
+    );
+    assert!(
+        w.write_block(&columns_of(&image, 0, 8), 0).is_err(),
+        "half a tile column"
+    );
+    w.write_block(&rows_of(&columns_of(&image, 0, 16), 0, 5), 0)
+        .unwrap();
+    assert!(
+        w.write_block(&columns_of(&image, 0, 32), 0).is_err(),
+        "columns at different rows"
+    );
+    w.write_block(&rows_of(&columns_of(&image, 0, 16), 5, 20), 0)
+        .unwrap();
+    w.write_block(&columns_of(&image, 16, 40), 16).unwrap();
+    assert!(
+        w.write_block(&rows_of(&columns_of(&image, 16, 40), 0, 1), 16)
+            .is_err(),
+        "past the end"
+    );
+    w.finish().unwrap();
+    let back = super::read_tiff(&path).unwrap();
+    assert_eq!((back.width, back.height), (40, 20));
+    let mut w = super::TiffRows::create_tiled(&path, [40, 20], &names, q, [0, 0], 16).unwrap();
+    w.write_block(&columns_of(&image, 0, 16), 0).unwrap();
+    assert!(w.finish().is_err(), "finished without the other columns");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

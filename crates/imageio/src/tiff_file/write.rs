@@ -1,6 +1,7 @@
 //! Writing: one IFD, little-endian, Deflate-compressed strips (see the module documentation),
 //! whole images or rows as they arrive ([`TiffRows`], streaming output).
 
+use super::tiles::{Tiles, TILE_LENGTH};
 use super::*;
 use crate::atomic_write::AtomicFile;
 use crate::quantize::{quantize_image, Samples};
@@ -63,6 +64,40 @@ pub(crate) fn write_tiff(
     rows.finish()
 }
 
+/// Writes `image` as a tiled TIFF, tiles `tile_width` pixels wide, column of tiles after
+/// column of tiles: the file [`TiffRows::create_tiled`] makes from a frame rendered in column
+/// blocks of that width, byte for byte.
+pub(crate) fn write_tiff_tiled(
+    path: &Path,
+    image: &Image,
+    quantize: Quantize,
+    origin: [u32; 2],
+    tile_width: u32,
+) -> Result<(), ImageError> {
+    let size = [image.width, image.height];
+    let mut tiled =
+        TiffRows::create_tiled(path, size, &image.channels, quantize, origin, tile_width)?;
+    let nc = image.channels.len();
+    for x in (0..image.width).step_by(tile_width as usize) {
+        let w = tile_width.min(image.width - x);
+        let columns = (x as usize * nc)..((x + w) as usize * nc);
+        let data = image
+            .data
+            .chunks_exact(image.width as usize * nc)
+            .flat_map(|row| &row[columns.clone()])
+            .copied()
+            .collect();
+        let block = Image {
+            width: w,
+            height: image.height,
+            channels: image.channels.clone(),
+            data,
+        };
+        tiled.write_block(&block, x)?;
+    }
+    tiled.finish()
+}
+
 /// A TIFF written as its rows arrive (streaming output): each strip is compressed and written
 /// as soon as its rows are in, and the IFD goes at the end, its offset patched into the header.
 /// The file is the one [`write_tiff`] writes for the whole image, byte for byte.
@@ -84,6 +119,8 @@ pub struct TiffRows {
     strip_offsets: Vec<u64>,
     strip_counts: Vec<u32>,
     offset: u64,
+    /// The tile grid of a tiled file (`None`: strips).
+    tiles: Option<Tiles>,
 }
 
 impl TiffRows {
@@ -130,35 +167,82 @@ impl TiffRows {
             strip_offsets: Vec::new(),
             strip_counts: Vec::new(),
             offset: 8,
+            tiles: None,
         })
+    }
+
+    /// [`TiffRows::create`] for a tiled file: tiles `tile_width` pixels wide (a multiple of
+    /// 16) and 16 rows tall, filled by blocks of whole columns of tiles
+    /// ([`TiffRows::write_block`]), each column top to bottom.
+    pub fn create_tiled(
+        path: &Path,
+        size: [u32; 2],
+        channels: &[String],
+        quantize: Quantize,
+        origin: [u32; 2],
+        tile_width: u32,
+    ) -> Result<TiffRows, ImageError> {
+        if tile_width == 0 || tile_width % 16 != 0 {
+            return Err(format_error(
+                path,
+                format!("expected a tile width that is a multiple of 16, found {tile_width}"),
+            ));
+        }
+        let mut rows = TiffRows::create(path, size, channels, quantize, origin)?;
+        rows.tiles = Some(Tiles::new(size, tile_width));
+        Ok(rows)
     }
 
     /// Appends the next rows (an image of the file's width and channels).
     pub fn write_rows(&mut self, rows: &Image) -> Result<(), ImageError> {
-        let path = self.path.clone();
-        if rows.width != self.size[0]
-            || rows.channels != self.channels
-            || self.rows + rows.height > self.size[1]
-        {
+        self.write_block(rows, 0)
+    }
+
+    /// Appends the next rows of the columns `x .. x + rows.width`: the whole width for a
+    /// striped file, whole columns of tiles (at the same row) for a tiled one.
+    pub fn write_block(&mut self, rows: &Image, x: u32) -> Result<(), ImageError> {
+        let fits = |y: u32| {
+            y.checked_add(rows.height)
+                .is_some_and(|e| e <= self.size[1])
+        };
+        let place = match &self.tiles {
+            None => (x == 0 && rows.width == self.size[0]).then_some((self.rows, None)),
+            Some(t) => t.columns(x, rows.width, self.size[0]).and_then(|(c0, c1)| {
+                let y = t.rows[c0];
+                t.rows[c0..c1]
+                    .iter()
+                    .all(|&r| r == y)
+                    .then_some((y, Some((c0, c1))))
+            }),
+        }
+        .filter(|&(y, _)| rows.channels == self.channels && fits(y));
+        let Some((y, columns)) = place else {
+            let tiles = self.tiles.as_ref().map_or(String::new(), |t| {
+                format!(" (whole columns of {}-pixel tiles)", t.width)
+            });
             return Err(format_error(
-                &path,
+                &self.path,
                 format!(
-                    "expected rows {} wide with channels {}, at most {} more; found {}x{} with {}",
+                    "expected rows of the next {} columns{tiles} with channels {}, \
+                     below the rows already written; found {}x{} at column {x} with {}",
                     self.size[0],
                     self.channels.join(","),
-                    self.size[1] - self.rows,
                     rows.width,
                     rows.height,
                     rows.channels.join(",")
                 ),
             ));
+        };
+        let origin = [self.origin[0] + x, self.origin[1] + y];
+        let bytes = match quantize_image(rows, self.quantize, origin) {
+            Samples::U8(v) => v,
+            Samples::U16(v) => v.iter().flat_map(|s| s.to_le_bytes()).collect(),
+            Samples::F32(v) => v.iter().flat_map(|s| s.to_le_bytes()).collect(),
+        };
+        if let Some((c0, c1)) = columns {
+            return self.write_tile_columns(&bytes, rows, (c0, c1));
         }
-        let origin = [self.origin[0], self.origin[1] + self.rows];
-        match quantize_image(rows, self.quantize, origin) {
-            Samples::U8(v) => self.pending.extend(v),
-            Samples::U16(v) => self.pending.extend(v.iter().flat_map(|s| s.to_le_bytes())),
-            Samples::F32(v) => self.pending.extend(v.iter().flat_map(|s| s.to_le_bytes())),
-        }
+        self.pending.extend(bytes);
         self.rows += rows.height;
         let strip = self.rows_per_strip * self.row_bytes;
         let full = if self.rows == self.size[1] {
@@ -167,6 +251,63 @@ impl TiffRows {
             self.pending.len() / strip.max(1) * strip
         };
         self.write_strips(full)
+    }
+
+    /// Adds a block's quantized rows to its columns of tiles and writes the tiles they
+    /// complete (compressed in parallel, written column by column, top to bottom).
+    fn write_tile_columns(
+        &mut self,
+        bytes: &[u8],
+        rows: &Image,
+        (c0, c1): (usize, usize),
+    ) -> Result<(), ImageError> {
+        let size = self.size;
+        let pixel_bytes = self.channels.len() * self.bits as usize / 8;
+        let tiles = self.tiles.as_mut().expect("a tiled file");
+        for row in bytes.chunks_exact(rows.width as usize * pixel_bytes) {
+            let mut at = 0;
+            for c in c0..c1 {
+                let w = tiles.column_width(c, size[0]) as usize * pixel_bytes;
+                tiles.pending[c].extend_from_slice(&row[at..at + w]);
+                at += w;
+            }
+        }
+        let mut done = Vec::new();
+        for c in c0..c1 {
+            tiles.rows[c] += rows.height;
+            done.extend(tiles.complete(c, size, pixel_bytes));
+        }
+        use rayon::prelude::*;
+        let compressed = done
+            .par_iter()
+            .map(|(_, tile)| deflate(tile))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| io_error(&self.path, e))?;
+        for ((index, _), data) in done.iter().zip(compressed) {
+            let tiles = self.tiles.as_mut().expect("a tiled file");
+            tiles.offsets[*index] = self.offset;
+            tiles.counts[*index] = data.len() as u32;
+            self.offset += data.len() as u64;
+            self.file
+                .writer()
+                .write_all(&data)
+                .map_err(|e| io_error(&self.path, e))?;
+        }
+        self.check_size()
+    }
+
+    /// A classic TIFF's offsets are 32-bit: refuse to write past 2 GiB of pixels.
+    fn check_size(&self) -> Result<(), ImageError> {
+        if self.offset > u32::MAX as u64 / 2 {
+            return Err(format_error(
+                &self.path,
+                format!(
+                    "expected a TIFF under 2 GiB, found {} bytes of pixels",
+                    self.offset
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Compresses and writes the first `n` pending bytes (whole strips, or the last rows).
@@ -180,12 +321,7 @@ impl TiffRows {
         use rayon::prelude::*;
         let strips = self.pending[..n]
             .par_chunks(self.rows_per_strip * self.row_bytes)
-            .map(|rows| {
-                let mut z =
-                    flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
-                z.write_all(rows)?;
-                z.finish()
-            })
+            .map(deflate)
             .collect::<Result<Vec<_>, _>>()
             .map_err(|e| io_error(&path, e))?;
         self.pending.drain(..n);
@@ -198,25 +334,20 @@ impl TiffRows {
                 .write_all(s)
                 .map_err(|e| io_error(&path, e))?;
         }
-        if self.offset > u32::MAX as u64 / 2 {
-            return Err(format_error(
-                &path,
-                format!(
-                    "expected a TIFF under 2 GiB, found {} bytes of pixels",
-                    self.offset
-                ),
-            ));
-        }
-        Ok(())
+        self.check_size()
     }
 
     /// Writes the IFD and renames the file into place; every row must have arrived.
     pub fn finish(mut self) -> Result<(), ImageError> {
         let path = self.path.clone();
-        if self.rows != self.size[1] {
+        let rows = match &self.tiles {
+            None => self.rows,
+            Some(t) => t.rows.iter().copied().min().unwrap_or(0),
+        };
+        if rows != self.size[1] {
             return Err(format_error(
                 &path,
-                format!("expected {} rows, found {}", self.size[1], self.rows),
+                format!("expected {} rows, found {rows}", self.size[1]),
             ));
         }
         let (ifd_offset, ifd, values) = self.directory();
@@ -244,6 +375,22 @@ impl TiffRows {
         let description = format!("{DESCRIPTION_PREFIX}{}", self.channels.join(","));
         let offset = self.offset + (self.offset & 1); // IFDs start on a word boundary
         let strip_offsets: Vec<u32> = self.strip_offsets.iter().map(|&o| o as u32).collect();
+        let chunks = match &self.tiles {
+            None => vec![
+                longs(TAG_STRIP_OFFSETS, &strip_offsets),
+                longs(TAG_ROWS_PER_STRIP, &[self.rows_per_strip as u32]),
+                longs(TAG_STRIP_BYTE_COUNTS, &self.strip_counts),
+            ],
+            Some(t) => {
+                let offsets: Vec<u32> = t.offsets.iter().map(|&o| o as u32).collect();
+                vec![
+                    longs(TAG_TILE_WIDTH, &[t.width]),
+                    longs(TAG_TILE_LENGTH, &[TILE_LENGTH]),
+                    longs(TAG_TILE_OFFSETS, &offsets),
+                    longs(TAG_TILE_BYTE_COUNTS, &t.counts),
+                ]
+            }
+        };
         let mut entries = vec![
             longs(TAG_IMAGE_WIDTH, &[self.size[0]]),
             longs(TAG_IMAGE_LENGTH, &[self.size[1]]),
@@ -251,14 +398,12 @@ impl TiffRows {
             shorts(TAG_COMPRESSION, &[8]),
             shorts(TAG_PHOTOMETRIC, &[if color { 2 } else { 1 }]),
             ascii(TAG_IMAGE_DESCRIPTION, &description),
-            longs(TAG_STRIP_OFFSETS, &strip_offsets),
             shorts(TAG_SAMPLES_PER_PIXEL, &[nc as u16]),
-            longs(TAG_ROWS_PER_STRIP, &[self.rows_per_strip as u32]),
-            longs(TAG_STRIP_BYTE_COUNTS, &self.strip_counts),
             shorts(TAG_PLANAR_CONFIG, &[1]),
             ascii(TAG_SOFTWARE, "Illume"),
             shorts(TAG_SAMPLE_FORMAT, &vec![format; nc]),
         ];
+        entries.extend(chunks);
         if !extra.is_empty() {
             entries.push(shorts(TAG_EXTRA_SAMPLES, &extra));
         }
@@ -290,4 +435,12 @@ impl TiffRows {
         ifd.extend(0u32.to_le_bytes()); // no next IFD
         (ifd_offset, ifd, values)
     }
+}
+
+/// One strip or tile compressed on its own (Deflate, the fast level: readers decode each
+/// independently).
+fn deflate(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
+    let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+    z.write_all(bytes)?;
+    z.finish()
 }
