@@ -194,3 +194,59 @@ fn column_blocks_and_refining_ahead_give_the_pixels_of_one_crop_window() {
         }
     }
 }
+
+/// A window rendered in column blocks whose displacement leaves its bound is rendered again in
+/// full-width bands: the streamed tiled TIFF then takes whole rows of tiles, and reads back as
+/// the file written from the whole image (the tiles in another order, the same pixels).
+#[test]
+fn a_wide_pass_that_starts_over_streams_the_same_pixels() {
+    let dir = std::env::temp_dir().join(format!("illume-stream-wide-disp-{}", std::process::id()));
+    let rib = |d: &Path| {
+        scene(d, "")
+            .replace("Format 150 110 1", "Format 2200 40 1")
+            .replace(
+                "Surface \"plastic\"",
+                "Surface \"plastic\"\nAttribute \"displacementbound\" \"sphere\" [0.01]\n\
+                 Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.3]",
+            )
+    };
+    let (whole, streamed) = (dir.join("whole"), dir.join("streamed"));
+    for d in [&whole, &streamed] {
+        std::fs::create_dir_all(d).unwrap();
+    }
+    let frame = &support::frames(&rib(&whole), None)[0];
+    let r = render(frame, &RenderSettings::default());
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.message.contains("re-rendering")),
+        "the scene must overflow its bound: {:?}",
+        r.warnings
+    );
+    for w in write_displays(frame, &r) {
+        w.unwrap();
+    }
+    let frame = &support::frames(&rib(&streamed), None)[0];
+    let (_, written) = render_to_displays(frame, &RenderSettings::default());
+    for w in written {
+        let w = w.unwrap();
+        let name = w.path.file_name().unwrap().to_owned();
+        if !name.to_string_lossy().ends_with(".tif") {
+            continue;
+        }
+        let a = illume_imageio::read_image(&whole.join(&name)).unwrap();
+        let b = illume_imageio::read_image(&w.path).unwrap();
+        assert_eq!(
+            (a.width, a.height, &a.channels),
+            (b.width, b.height, &b.channels)
+        );
+        assert!(
+            a.data
+                .iter()
+                .zip(&b.data)
+                .all(|(x, y)| x.to_bits() == y.to_bits()),
+            "{name:?} reads back differently"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

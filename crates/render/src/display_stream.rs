@@ -5,7 +5,10 @@
 //! block's rows are in. The other kinds need the whole frame at the end (PNG's
 //! one zlib stream as `write_displays` makes it, OpenEXR, zfile, shadow maps, framebuffer
 //! pictures): they share one whole-frame buffer, kept only when such a display exists.
-//! Every file is the one [`crate::write_displays`] writes from the whole image, byte for byte.
+//! Every file is the one [`crate::write_displays`] writes from the whole image, byte for byte,
+//! but for one case: a window rendered in column blocks whose displacement leaves its bound is
+//! rendered again in full-width bands (the displacement-bound loop), and its tiled TIFF then has
+//! the same pixels with its tiles in row order.
 use crate::display::{plan_displays, DisplayError, DisplayPlan, WrittenDisplay};
 use crate::Rendered;
 use illume_imageio::TiffRows;
