@@ -29,6 +29,27 @@ fn scene(dir: &Path, extra: &str) -> String {
     )
 }
 
+/// `rib` with a displacement farther than its `displacementbound` on its surfaces: the hider
+/// renders such a frame again (the displacement-bound loop).
+fn overflowing(rib: String) -> String {
+    rib.replace(
+        "Surface \"plastic\"",
+        "Surface \"plastic\"\nAttribute \"displacementbound\" \"sphere\" [0.01]\n\
+         Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.3]",
+    )
+}
+
+/// Fails unless the render went through the displacement-bound loop.
+fn assert_overflows(r: &illume_render::Rendered) {
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.message.contains("re-rendering")),
+        "the scene must overflow its bound: {:?}",
+        r.warnings
+    );
+}
+
 /// Writes `rib`'s frame both ways (into `dir/whole` and `dir/streamed`) and compares every file.
 /// The streamed side runs on `threads` threads, which must not change a byte.
 fn same_files_both_ways(
@@ -111,22 +132,9 @@ fn a_wide_frame_written_band_by_band_streams_the_same_files() {
 #[test]
 fn a_pass_that_starts_over_streams_the_final_image() {
     let dir = std::env::temp_dir().join(format!("illume-stream-disp-{}", std::process::id()));
-    let rib = |d: &Path| {
-        scene(d, "").replace(
-            "Surface \"plastic\"",
-            "Surface \"plastic\"\nAttribute \"displacementbound\" \"sphere\" [0.01]\n\
-             Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.3]",
-        )
-    };
+    let rib = |d: &Path| overflowing(scene(d, ""));
     let frame = &support::frames(&rib(&dir.join("probe")), None)[0];
-    let r = render(frame, &RenderSettings::default());
-    assert!(
-        r.warnings
-            .iter()
-            .any(|w| w.message.contains("re-rendering")),
-        "the scene must overflow its bound: {:?}",
-        r.warnings
-    );
+    assert_overflows(&render(frame, &RenderSettings::default()));
     same_files_both_ways(&dir, rib, None, 3);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -201,28 +209,14 @@ fn column_blocks_and_refining_ahead_give_the_pixels_of_one_crop_window() {
 #[test]
 fn a_wide_pass_that_starts_over_streams_the_same_pixels() {
     let dir = std::env::temp_dir().join(format!("illume-stream-wide-disp-{}", std::process::id()));
-    let rib = |d: &Path| {
-        scene(d, "")
-            .replace("Format 150 110 1", "Format 2200 40 1")
-            .replace(
-                "Surface \"plastic\"",
-                "Surface \"plastic\"\nAttribute \"displacementbound\" \"sphere\" [0.01]\n\
-                 Displacement \"ripple\" \"Km\" [0] \"frequency\" [0] \"offset\" [0.3]",
-            )
-    };
+    let rib = |d: &Path| overflowing(scene(d, "").replace("Format 150 110 1", "Format 2200 40 1"));
     let (whole, streamed) = (dir.join("whole"), dir.join("streamed"));
     for d in [&whole, &streamed] {
         std::fs::create_dir_all(d).unwrap();
     }
     let frame = &support::frames(&rib(&whole), None)[0];
     let r = render(frame, &RenderSettings::default());
-    assert!(
-        r.warnings
-            .iter()
-            .any(|w| w.message.contains("re-rendering")),
-        "the scene must overflow its bound: {:?}",
-        r.warnings
-    );
+    assert_overflows(&r);
     for w in write_displays(frame, &r) {
         w.unwrap();
     }
