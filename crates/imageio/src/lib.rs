@@ -97,6 +97,21 @@ impl Image {
         self.data[(y as usize * self.width as usize + x as usize) * nc + c]
     }
 
+    /// Columns `x0..x1` of every row (a copy): a column block of a frame.
+    pub(crate) fn columns(&self, x0: u32, x1: u32) -> Image {
+        let nc = self.channels.len();
+        let span = x0 as usize * nc..x1 as usize * nc;
+        Image {
+            width: x1 - x0,
+            height: self.height,
+            channels: self.channels.clone(),
+            data: (self.data.chunks_exact((self.width as usize * nc).max(1)))
+                .flat_map(|row| &row[span.clone()])
+                .copied()
+                .collect(),
+        }
+    }
+
     /// Checks the invariants an encoder relies on.
     fn validate(&self, path: &Path) -> Result<(), ImageError> {
         let expected = self.width as u64 * self.height as u64 * self.channels.len() as u64;

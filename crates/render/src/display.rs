@@ -215,6 +215,13 @@ impl DisplayPlan {
         !self.shadow && matches!(self.kind.to_ascii_lowercase().as_str(), "tiff" | "file")
     }
 
+    /// The tile width of the display's file for a crop window `width` pixels wide: a TIFF of
+    /// a window rendered in column blocks is tiled a block wide, so that its blocks can be
+    /// written as they arrive (`DisplayStream`) and the whole-image file is the same bytes.
+    pub(crate) fn tile_width(&self, width: u32) -> Option<u32> {
+        column_block_width(width).filter(|_| self.streams())
+    }
+
     /// Writes the display from the whole rendered crop `r`.
     pub(crate) fn write(self, frame: &Frame, r: &Rendered) -> Result<WrittenDisplay, DisplayError> {
         let image = self.image(r)?;
@@ -229,8 +236,7 @@ impl DisplayPlan {
             // render farms) quantize exactly as the same pixels of a full render.
             let depth = depth_matrices(frame);
             let origin = [r.x0, r.y0];
-            // The file a streamed display writes from a window rendered in column blocks.
-            match column_block_width(image.width).filter(|_| self.streams()) {
+            match self.tile_width(image.width) {
                 Some(w) => write_tiff_tiled(&self.path, &image, self.quantize, origin, w)?,
                 None => write_display_cropped(
                     &self.path,

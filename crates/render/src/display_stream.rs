@@ -12,7 +12,7 @@
 use crate::display::{plan_displays, DisplayError, DisplayPlan, WrittenDisplay};
 use crate::Rendered;
 use illume_imageio::TiffRows;
-use illume_reyes::{column_block_width, AovLayout, FrameCollector, PixelRows, RowSink};
+use illume_reyes::{AovLayout, FrameCollector, PixelRows, RowSink};
 use illume_ri::Frame;
 
 /// One display being written.
@@ -118,7 +118,7 @@ impl RowSink for DisplayStream<'_> {
             };
             let (size, origin) = ([cx1 - cx0, cy1 - cy0], [cx0, cy0]);
             // A window rendered in column blocks arrives a block at a time: a tiled file.
-            let file = match column_block_width(size[0]) {
+            let file = match plan.tile_width(size[0]) {
                 Some(w) => {
                     TiffRows::create_tiled(&plan.path, size, &channels, plan.quantize, origin, w)
                 }

@@ -243,22 +243,6 @@ fn an_unfinished_stream_leaves_no_file_and_too_many_rows_are_an_error() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Columns `x0..x1` of `image`.
-fn columns_of(image: &crate::Image, x0: u32, x1: u32) -> crate::Image {
-    let nc = image.channels.len();
-    crate::Image {
-        width: x1 - x0,
-        height: image.height,
-        channels: image.channels.clone(),
-        data: image
-            .data
-            .chunks_exact(image.width as usize * nc)
-            .flat_map(|row| &row[x0 as usize * nc..x1 as usize * nc])
-            .copied()
-            .collect(),
-    }
-}
-
 /// A tiled file streamed a column block at a time, each in bands of any height, is the file
 /// `write_tiff_tiled` writes from the whole image, and it reads back as the striped file does:
 /// the same quantized values, the padding of the edge tiles (the last column is 300 − 256 = 44
@@ -300,7 +284,7 @@ fn a_tiled_file_streamed_by_column_blocks_is_the_whole_image_file_and_reads_back
             )
             .unwrap();
             for x in [0, 128, 256] {
-                let block = columns_of(&image, x, (x + 128).min(300));
+                let block = image.columns(x, (x + 128).min(300));
                 let mut y = 0;
                 for b in bands {
                     w.write_block(&rows_of(&block, y, y + b), x).unwrap();
@@ -330,24 +314,24 @@ fn a_tiled_file_takes_only_whole_tile_columns_in_order() {
     assert!(super::TiffRows::create_tiled(&path, [40, 20], &names, q, [0, 0], 24).is_err());
     let mut w = super::TiffRows::create_tiled(&path, [40, 20], &names, q, [0, 0], 16).unwrap();
     assert!(
-        w.write_block(&columns_of(&image, 8, 24), 8).is_err(),
+        w.write_block(&image.columns(8, 24), 8).is_err(),
         "off the tile grid"
     );
     assert!(
-        w.write_block(&columns_of(&image, 0, 8), 0).is_err(),
+        w.write_block(&image.columns(0, 8), 0).is_err(),
         "half a tile column"
     );
-    w.write_block(&rows_of(&columns_of(&image, 0, 16), 0, 5), 0)
+    w.write_block(&rows_of(&image.columns(0, 16), 0, 5), 0)
         .unwrap();
     assert!(
-        w.write_block(&columns_of(&image, 0, 32), 0).is_err(),
+        w.write_block(&image.columns(0, 32), 0).is_err(),
         "columns at different rows"
     );
-    w.write_block(&rows_of(&columns_of(&image, 0, 16), 5, 20), 0)
+    w.write_block(&rows_of(&image.columns(0, 16), 5, 20), 0)
         .unwrap();
-    w.write_block(&columns_of(&image, 16, 40), 16).unwrap();
+    w.write_block(&image.columns(16, 40), 16).unwrap();
     assert!(
-        w.write_block(&rows_of(&columns_of(&image, 16, 40), 0, 1), 16)
+        w.write_block(&rows_of(&image.columns(16, 40), 0, 1), 16)
             .is_err(),
         "past the end"
     );
@@ -355,7 +339,7 @@ fn a_tiled_file_takes_only_whole_tile_columns_in_order() {
     let back = super::read_tiff(&path).unwrap();
     assert_eq!((back.width, back.height), (40, 20));
     let mut w = super::TiffRows::create_tiled(&path, [40, 20], &names, q, [0, 0], 16).unwrap();
-    w.write_block(&columns_of(&image, 0, 16), 0).unwrap();
+    w.write_block(&image.columns(0, 16), 0).unwrap();
     assert!(w.finish().is_err(), "finished without the other columns");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -77,22 +77,8 @@ pub(crate) fn write_tiff_tiled(
     let size = [image.width, image.height];
     let mut tiled =
         TiffRows::create_tiled(path, size, &image.channels, quantize, origin, tile_width)?;
-    let nc = image.channels.len();
     for x in (0..image.width).step_by(tile_width as usize) {
-        let w = tile_width.min(image.width - x);
-        let columns = (x as usize * nc)..((x + w) as usize * nc);
-        let data = image
-            .data
-            .chunks_exact(image.width as usize * nc)
-            .flat_map(|row| &row[columns.clone()])
-            .copied()
-            .collect();
-        let block = Image {
-            width: w,
-            height: image.height,
-            channels: image.channels.clone(),
-            data,
-        };
+        let block = image.columns(x, (x + tile_width).min(image.width));
         tiled.write_block(&block, x)?;
     }
     tiled.finish()
