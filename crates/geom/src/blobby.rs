@@ -33,6 +33,8 @@ use crate::primvar::{camera_values, is_position, resolve, ClassCounts, PrimVarDa
 use crate::{Bound, BuildContext, GeomError, Primitive};
 use glam::{DMat3, DMat4, DVec3};
 use illume_rib::{Class, ParamList, Type};
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
 
 /// Lattice cell size in pixels at ShadingRate 1 (it scales with √ShadingRate).
@@ -107,6 +109,7 @@ pub fn build_blobby(
     };
 
     let m = ctx.camera_from_object;
+    let user = user_vars(&vars, &m, nleaf);
     let shared = Arc::new(Shared {
         field,
         camera_from_object: m,
@@ -114,13 +117,15 @@ pub fn build_blobby(
         // reverses their winding), so the hider's orientation flip treats both alike.
         normal_to_camera: DMat3::from_mat4(m).inverse().transpose() * m.determinant().signum(),
         reach: h,
+        blend: user
+            .iter()
+            .any(|u| matches!(u.values, UserValues::PerLeaf(_))),
     });
     let outward = |p: DVec3| -> DVec3 {
         let (_, g) = shared.field.eval(p, None);
         (-g).try_normalize().unwrap_or(DVec3::Z)
     };
     let normals: Vec<DVec3> = mesh.positions.iter().map(|&p| outward(p)).collect();
-    let user = user_vars(&vars, &m, nleaf);
     let st = default_st(
         &ctx.texture_coordinates,
         [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]],
@@ -128,6 +133,7 @@ pub fn build_blobby(
     let mut out: Vec<Box<dyn Primitive>> = Vec::with_capacity(mesh.triangles.len());
     for t in &mesh.triangles {
         let tri = Arc::new(BlobTriangle {
+            id: NEXT_TRIANGLE.fetch_add(1, Relaxed),
             shared: shared.clone(),
             p: t.map(|i| mesh.positions[i as usize]),
             n: t.map(|i| normals[i as usize]),
@@ -236,6 +242,9 @@ struct Shared {
     /// cell missed the groove of a `max` union on a 16-cell lattice). The
     /// bound is padded by it, so it is conservative by construction.
     reach: f64,
+    /// Whether some primitive variable is blended per leaf (the grid memo then keeps the
+    /// leaves' field values too).
+    blend: bool,
 }
 
 /// One marching-tetrahedra triangle, its corners on the isosurface with their outward field
@@ -243,6 +252,8 @@ struct Shared {
 /// `p0, p1, p2, p2`, and each point is then projected onto the isosurface.
 #[derive(Debug)]
 pub struct BlobTriangle {
+    /// Unique among the triangles of the process: names it in the [`GridMemo`].
+    id: u64,
     shared: Arc<Shared>,
     p: [DVec3; 3],
     n: [DVec3; 3],
@@ -270,8 +281,12 @@ impl BlobTriangle {
         let (p0, n, dpdu, dpdv) = self.flat(u, v);
         let [a, b, c] = self.p;
         let flat_normal = (b - a).cross(c - a);
+        // The field gradient only when both normals fail (it costs a field evaluation).
         let gradient = || -self.shared.field.eval(p0, None).1;
-        for d in [n, flat_normal, gradient()] {
+        let directions = [n, flat_normal]
+            .into_iter()
+            .chain(std::iter::once_with(gradient));
+        for d in directions {
             if let Some(p) = d.try_normalize().and_then(|d| self.project(p0, d)) {
                 return (p, dpdu, dpdv);
             }
@@ -325,16 +340,20 @@ impl BlobTriangle {
         // Bracket [inside, outside] in t: g(inside) > 0 ≥ g(outside).
         let (mut t_in, mut t_out) = if g0 > 0.0 { (t, t_far) } else { (t_far, t) };
         let (mut t, mut gt, mut dgt) = (t, gt, dgt);
-        // Every third step bisects, so a Newton ping-pong at a max/min crease still converges.
-        for step in 0..100 {
+        // A step that did not halve |g| is followed by a bisection, so a Newton ping-pong at a
+        // max/min crease still converges. (Bisecting every third step instead undid the
+        // converging Newton steps on the smooth surface: 13 field evaluations per point.)
+        let mut bisect = false;
+        for _ in 0..100 {
             let newton = t - gt / dgt;
             let (a, b) = (t_in.min(t_out), t_in.max(t_out));
-            let next = if step % 3 != 2 && dgt != 0.0 && newton > a && newton < b {
+            let next = if !bisect && dgt != 0.0 && newton > a && newton < b {
                 newton
             } else {
                 0.5 * (t_in + t_out)
             };
             let done = (next - t).abs() <= 1e-14 * self.shared.reach;
+            let before = gt.abs();
             t = next;
             (gt, dgt) = g(t);
             if gt > 0.0 {
@@ -342,32 +361,73 @@ impl BlobTriangle {
             } else {
                 t_out = t;
             }
+            bisect = gt.abs() > 0.5 * before;
             if done || gt == 0.0 || (t_in - t_out).abs() <= 1e-15 * self.shared.reach {
                 break;
             }
         }
         Some(p0 + d * t)
     }
+}
 
-    fn outward_normal(&self, p: DVec3) -> Option<DVec3> {
-        (-self.shared.field.eval(p, None).1).try_normalize()
+impl BlobTriangle {
+    /// The field gradient at the isosurface point of `(u, v)` ([`BlobTriangle::surface_point`])
+    /// and, when `leaves` is given, each leaf's field there; and the camera-space
+    /// `(P, dP/du, dP/dv)` of [`Surface::eval`].
+    fn on_surface(&self, u: f64, v: f64, leaves: Option<&mut Vec<f64>>) -> (DVec3, [DVec3; 3]) {
+        let (p, dpdu, dpdv) = self.surface_point(u, v);
+        let (_, gradient) = self.shared.field.eval(p, leaves);
+        // Tangent to the isosurface: the flat derivatives with their normal part removed.
+        let (dpdu, dpdv) = match (-gradient).try_normalize() {
+            Some(n) => (dpdu - n * n.dot(dpdu), dpdv - n * n.dot(dpdv)),
+            None => (dpdu, dpdv),
+        };
+        let m = &self.shared.camera_from_object;
+        let camera = [
+            m.transform_point3(p),
+            m.transform_vector3(dpdu),
+            m.transform_vector3(dpdv),
+        ];
+        (gradient, camera)
     }
 }
 
 impl Surface for BlobTriangle {
     fn eval(&self, u: f64, v: f64) -> [DVec3; 3] {
-        let (p, dpdu, dpdv) = self.surface_point(u, v);
-        // Tangent to the isosurface: the flat derivatives with their normal part removed.
-        let (dpdu, dpdv) = match self.outward_normal(p) {
-            Some(n) => (dpdu - n * n.dot(dpdu), dpdv - n * n.dot(dpdv)),
-            None => (dpdu, dpdv),
-        };
-        let m = &self.shared.camera_from_object;
-        [
-            m.transform_point3(p),
-            m.transform_vector3(dpdu),
-            m.transform_vector3(dpdv),
-        ]
+        self.on_surface(u, v, None).1
+    }
+
+    /// [`Surface::eval`] at every point, remembered in this thread's [`GridMemo`] for the
+    /// primitive variables that `dice` evaluates next at the same points.
+    fn eval_grid(&self, us: &[f64], vs: &[f64], out: &mut Vec<[DVec3; 3]>) {
+        GRID_MEMO.with(|memo| {
+            let mut memo = memo.borrow_mut();
+            let GridMemo {
+                triangle,
+                us: mus,
+                vs: mvs,
+                gradients,
+                leaves,
+                nleaf,
+            } = &mut *memo;
+            *triangle = None;
+            (mus.clear(), mvs.clear(), gradients.clear(), leaves.clear());
+            mus.extend_from_slice(us);
+            mvs.extend_from_slice(vs);
+            out.reserve(us.len() * vs.len());
+            let mut leaf = Vec::new();
+            for &v in vs {
+                for &u in us {
+                    let blend = self.shared.blend.then_some(&mut leaf);
+                    let (gradient, camera) = self.on_surface(u, v, blend);
+                    gradients.push(gradient);
+                    leaves.extend_from_slice(&leaf);
+                    out.push(camera);
+                }
+            }
+            *nleaf = leaf.len();
+            *triangle = Some(self.id);
+        });
     }
 
     fn bound(&self, u: [f64; 2], v: [f64; 2]) -> Bound {
@@ -400,20 +460,23 @@ struct TriangleVar {
 
 impl Field for TriangleVar {
     fn eval_into(&self, u: f64, v: f64, out: &mut [f64]) {
-        let (p, _, _) = self.tri.surface_point(u, v);
         let shared = &self.tri.shared;
+        let mut leaf = Vec::new();
+        let blend = matches!(self.what, VarKind::Blend { .. });
+        let remembered = GRID_MEMO.with(|m| m.borrow().find(self.tri.id, u, v, &mut leaf));
+        let gradient = remembered.unwrap_or_else(|| {
+            let leaves = blend.then_some(&mut leaf);
+            self.tri.on_surface(u, v, leaves).0
+        });
         match &self.what {
             VarKind::Normal => {
-                let n = self
-                    .tri
-                    .outward_normal(p)
+                let n = (-gradient)
+                    .try_normalize()
                     .unwrap_or_else(|| self.tri.flat(u, v).1);
                 let c = shared.normal_to_camera * n;
                 out.copy_from_slice(&c.to_array()[..out.len().min(3)]);
             }
             VarKind::Blend { values, components } => {
-                let mut leaf = Vec::new();
-                shared.field.eval(p, Some(&mut leaf));
                 let w = BlobbyField::blend_weights(&leaf);
                 out.fill(0.0);
                 for (k, wk) in w.iter().enumerate() {
@@ -423,5 +486,76 @@ impl Field for TriangleVar {
                 }
             }
         }
+    }
+}
+
+/// The source of [`BlobTriangle::id`].
+static NEXT_TRIANGLE: AtomicU64 = AtomicU64::new(0);
+
+/// What the primitive variables need of the last grid a [`BlobTriangle`] evaluated on this
+/// thread ([`Surface::eval_grid`]). `dice` evaluates a grid's positions, then each primitive
+/// variable at the same parameters; each needs the field at the point on the isosurface (a
+/// root find of several field evaluations), which was found three times per vertex with a
+/// smooth normal and a blended `Cs` (`rib/blobby.rib`). The remembered values are the ones
+/// found again, bit for bit; a lookup for another triangle or parameter finds nothing and
+/// computes.
+#[derive(Default)]
+struct GridMemo {
+    triangle: Option<u64>,
+    us: Vec<f64>,
+    vs: Vec<f64>,
+    /// The field gradient per point, row by row.
+    gradients: Vec<DVec3>,
+    /// `nleaf` field values per point when the blobby blends a variable (else empty).
+    leaves: Vec<f64>,
+    nleaf: usize,
+}
+
+thread_local! {
+    static GRID_MEMO: RefCell<GridMemo> = RefCell::default();
+}
+
+impl GridMemo {
+    /// The gradient remembered for triangle `id` at `(u, v)`, with its leaves' fields (when
+    /// remembered) in `leaf`.
+    fn find(&self, id: u64, u: f64, v: f64, leaf: &mut Vec<f64>) -> Option<DVec3> {
+        if self.triangle != Some(id) {
+            return None;
+        }
+        let i = self.us.iter().position(|x| x.to_bits() == u.to_bits())?;
+        let j = self.vs.iter().position(|x| x.to_bits() == v.to_bits())?;
+        let k = j * self.us.len() + i;
+        leaf.clear();
+        leaf.extend_from_slice(self.leaves.get(k * self.nleaf..(k + 1) * self.nleaf)?);
+        self.gradients.get(k).copied()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_grid_memo_answers_only_for_its_triangle_and_parameters() {
+        let (us, vs) = (vec![0.0, 0.5, 1.0], vec![0.25, 0.75]);
+        let memo = GridMemo {
+            triangle: Some(7),
+            us: us.clone(),
+            vs: vs.clone(),
+            gradients: (0..6).map(|k| DVec3::splat(f64::from(k))).collect(),
+            leaves: (0..12).map(f64::from).collect(),
+            nleaf: 2,
+        };
+        let mut leaf = Vec::new();
+        // Row by row, u fastest: (u 1.0, v 0.75) is point 5, its leaves 10 and 11.
+        assert_eq!(memo.find(7, 1.0, 0.75, &mut leaf), Some(DVec3::splat(5.0)));
+        assert_eq!(leaf, [10.0, 11.0]);
+        assert_eq!(memo.find(7, 0.5, 0.25, &mut leaf), Some(DVec3::splat(1.0)));
+        assert_eq!(leaf, [2.0, 3.0]);
+        assert_eq!(memo.find(8, 0.5, 0.25, &mut leaf), None, "another triangle");
+        assert_eq!(memo.find(7, 0.4, 0.25, &mut leaf), None, "a u off the grid");
+        assert_eq!(memo.find(7, 0.5, -0.0, &mut leaf), None, "a v off the grid");
+        let empty = GridMemo::default();
+        assert_eq!(empty.find(0, 0.0, 0.25, &mut leaf), None);
     }
 }
