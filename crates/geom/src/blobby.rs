@@ -411,9 +411,12 @@ impl Surface for BlobTriangle {
                 nleaf,
             } = &mut *memo;
             *triangle = None;
-            (mus.clear(), mvs.clear(), gradients.clear(), leaves.clear());
+            mus.clear();
             mus.extend_from_slice(us);
+            mvs.clear();
             mvs.extend_from_slice(vs);
+            gradients.clear();
+            leaves.clear();
             out.reserve(us.len() * vs.len());
             let mut leaf = Vec::new();
             for &v in vs {
