@@ -9,6 +9,7 @@
 //! interpolation of the lattice values; each edge is solved once and shared by its triangles.
 //! Triangles wind so `(b − a) × (c − a)` points from the inside (`field > level`) out.
 use glam::DVec3;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// An indexed triangle mesh.
@@ -91,14 +92,20 @@ pub fn marching_tetrahedra(
     level: f64,
 ) -> TriangleMesh {
     let [nx, ny, nz] = lattice.n;
+    // The lattice's field values, a plane per task: they are most of the work (up to 131³
+    // evaluations, serial while the RIB is read), and each is a pure function of its point.
     let mut values = vec![0.0f64; nx * ny * nz];
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                values[lattice.index(i, j, k)] = field(lattice.point(i, j, k)) - level;
+    let plane = (nx * ny).max(1);
+    values
+        .par_chunks_mut(plane)
+        .enumerate()
+        .for_each(|(k, values)| {
+            for j in 0..ny {
+                for i in 0..nx {
+                    values[j * nx + i] = field(lattice.point(i, j, k)) - level;
+                }
             }
-        }
-    }
+        });
     let mut mesh = TriangleMesh::default();
     let mut edges: HashMap<(usize, usize), u32> = HashMap::new();
     for k in 0..nz.saturating_sub(1) {
