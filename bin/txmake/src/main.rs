@@ -33,7 +33,8 @@ options:
   -fov degrees                         cube face field of view (default 90)
   -compression none|rle|zips|zip|piz|pxr24|b44|b44a   (default zip)
   -newer                               skip when the output is newer than every input
-  -v                                   say what is done";
+  -v                                   say what is done
+  -q                                   no progress spinner (there is none when stderr is not a terminal)";
 
 #[derive(Debug, PartialEq)]
 enum Job {
@@ -49,12 +50,14 @@ struct Args {
     opts: MakeOptions,
     newer: bool,
     verbose: bool,
+    quiet: bool,
 }
 
 fn parse(args: &[String]) -> Result<Args, String> {
     let mut opts = MakeOptions::default();
     let mut newer = false;
     let mut verbose = false;
+    let mut quiet = false;
     let mut mode: Option<&str> = None;
     let mut files: Vec<PathBuf> = Vec::new();
     let mut i = 0;
@@ -136,6 +139,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
             }
             "-newer" => newer = true,
             "-v" | "-verbose" => verbose = true,
+            "-q" | "-quiet" => quiet = true,
             "-h" | "-help" | "--help" => return Err(String::new()),
             _ if a.starts_with('-') && a.len() > 1 => return Err(format!("unknown option `{a}`")),
             _ => files.push(PathBuf::from(a)),
@@ -188,6 +192,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
         opts,
         newer,
         verbose,
+        quiet,
     })
 }
 
@@ -226,7 +231,7 @@ fn run(args: &Args) -> Result<(), String> {
         .map(|p| p.display().to_string())
         .collect::<Vec<_>>()
         .join(" ");
-    let progress = std::io::stderr().is_terminal().then(|| {
+    let progress = (!args.quiet && std::io::stderr().is_terminal()).then(|| {
         let bar = indicatif::ProgressBar::new_spinner();
         bar.enable_steady_tick(std::time::Duration::from_millis(120));
         bar
@@ -354,6 +359,8 @@ mod tests {
         assert_eq!(a.opts.fov, 95.0);
         let a = parse(&argv("-shadow shadow.z shadow.sm")).unwrap();
         assert!(matches!(a.job, Job::Shadow { .. }));
+        assert!(!a.quiet);
+        assert!(parse(&argv("-q in.tif out.tx")).unwrap().quiet);
     }
 
     #[test]
