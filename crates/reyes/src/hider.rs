@@ -6,7 +6,7 @@
 //! overflow reaches (`displacement_bound.rs`); each band of buckets is printed into exposed rows
 //! that go straight to a [`RowSink`] (`row_sink.rs`), so the film holds one band at a time.
 use crate::aov::AovLayout;
-use crate::bucket::{BandRenderer, BucketLayout, GridSlot};
+use crate::bucket::{BandRenderer, BucketLayout, GridSlot, SideTask};
 use crate::column_blocks::column_blocks;
 use crate::displacement_bound::render_until_bounded;
 use crate::film::Film;
@@ -248,7 +248,7 @@ impl<'f> Hider<'f> {
                     sink.begin_pass();
                     for by in 0..layout.band_count() {
                         let (buckets, _) = layout.band(by);
-                        sink.rows(bands.render(by, pieces, &lists[buckets], grids));
+                        sink.rows(bands.render(by, pieces, &lists[buckets], grids, Vec::new()));
                     }
                 },
             ));
@@ -331,23 +331,28 @@ fn render_block(
         * std::mem::size_of::<f32>();
     let ahead = band_bytes <= OVERLAP_BYTES;
     let mut written: Option<PixelRows> = None;
-    let lazy = LazyBands::new(frame, refiner, layout).render(ahead, |pieces, lists, grids, by| {
+    let band = |pieces: &[Piece],
+                lists: &[Vec<usize>],
+                grids: &[GridSlot],
+                by,
+                side: Vec<SideTask<'_>>| {
         let rows = match written.take() {
             Some(prev) => {
-                rayon::join(
-                    || sink.rows(prev),
-                    || bands.render(by, pieces, lists, grids),
-                )
-                .1
+                // The band before written while this one renders (a side task of the band).
+                let sink = &mut *sink;
+                let mut side: Vec<SideTask> = side;
+                side.push(Box::new(move || sink.rows(prev)));
+                bands.render(by, pieces, lists, grids, side)
             }
-            None => bands.render(by, pieces, lists, grids),
+            None => bands.render(by, pieces, lists, grids, side),
         };
         if rows_bytes(&rows) <= OVERLAP_BYTES {
             written = Some(rows);
         } else {
             sink.rows(rows);
         }
-    });
+    };
+    let lazy = LazyBands::new(frame, refiner, layout).render(ahead, band);
     // The last band, unless the pass is void (the caller starts the files over).
     if let (Ok(_), Some(rows)) = (&lazy, written.take()) {
         sink.rows(rows);

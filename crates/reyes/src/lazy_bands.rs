@@ -13,7 +13,7 @@
 //! frame-wide refine order ([`Piece::refine_order`]) that breaks depth ties between samples.
 //! Each band's waiting items are refined in parallel and merged in order, so the result does
 //! not depend on the thread count.
-use crate::bucket::{BucketLayout, GridSlot};
+use crate::bucket::{BucketLayout, GridSlot, SideTask};
 use crate::refine::{Item, Piece, PrimRef, RefineCounts, Refined, Refiner};
 use illume_ri::Frame;
 use rayon::prelude::*;
@@ -194,21 +194,22 @@ impl<'f, 'l> LazyBands<'f, 'l> {
     }
 
     /// Renders the frame band by band with `band` (given the live pieces, the band's bucket
-    /// lists, the pieces' grids and the band index). Stops with [`Overflowed`] after the
-    /// first band in which a displaced grid left its bound.
+    /// lists, the pieces' grids, the band index and work to do while the band renders).
+    /// Stops with [`Overflowed`] after the first band in which a displaced grid left its bound.
     ///
-    /// With `ahead`, the next band's waiting items are refined while a band renders (a task
-    /// the idle worker picks up): they are final by then, since refining band `by` defers
-    /// items only to later bands, and their refine depends on the items alone. With one
-    /// primitive or a few, a band's refine is one thread's work that held the others idle
-    /// (`rib/sphere.rib` at 2×: 7% of the wall time at 2 threads). What it holds in addition
+    /// With `ahead`, the next band's waiting items are refined while a band renders (a side
+    /// task of the band, [`BandRenderer::render`](crate::bucket::BandRenderer::render)): they
+    /// are final by then, since refining band `by` defers items only to later bands, and their
+    /// refine depends on the items alone. With one primitive or a few, a band's refine is one
+    /// thread's work that held the others idle (`rib/sphere.rib` at 2×: 7% of the wall time
+    /// at 2 threads). What it holds in addition
     /// is the next band's new pieces, not its grids: in a wide frame those are many (5120 ×
     /// 3840 `rib/bench/spotlight.rib`: 0.6 MB of a 12 MB heap), and a wide band has items
     /// enough to refine in parallel after it, so the caller turns it off there.
     pub fn render(
         mut self,
         ahead: bool,
-        mut band: impl FnMut(&[Piece], &[Vec<usize>], &[GridSlot], usize),
+        mut band: impl FnMut(&[Piece], &[Vec<usize>], &[GridSlot], usize, Vec<SideTask>),
     ) -> Result<RefineReport, Overflowed> {
         let count = self.layout.band_count();
         let mut next = None;
@@ -225,12 +226,14 @@ impl<'f, 'l> LazyBands<'f, 'l> {
             let lists = self.layout.band_lists(by, &self.pieces);
             let later = (ahead && by + 1 < count).then(|| self.take_waiting(by + 1));
             let this = &self;
-            rayon::in_place_scope(|s| {
-                if let Some(items) = later {
-                    s.spawn(|_| next = Some(this.refine_items(by + 1, items)));
-                }
-                band(&this.pieces, &lists, &this.grids, by);
-            });
+            let mut side: Vec<SideTask> = Vec::new();
+            if let Some(items) = later {
+                let next = &mut next;
+                side.push(Box::new(move || {
+                    *next = Some(this.refine_items(by + 1, items))
+                }));
+            }
+            band(&this.pieces, &lists, &this.grids, by, side);
             if self.grids.iter().any(|g| g.overflow.get().is_some()) {
                 return Err(Overflowed);
             }
