@@ -512,6 +512,9 @@ struct MovingMicropolygon<'a> {
     fixed: Option<([DVec3; 4], [f64; 4])>,
 }
 
+/// How many candidate samples [`MovingMicropolygon::sample_stratum`] gathers before testing them.
+const CANDIDATES: usize = 64;
+
 impl MovingMicropolygon<'_> {
     /// The buffer's pixels `[x0, x1, y0, y1]` (inclusive, relative to its origin) that the
     /// raster box `b` reaches, grown by the edge reach, the circle of confusion and `pad`;
@@ -549,6 +552,10 @@ impl MovingMicropolygon<'_> {
         let pad = self.reach.iter().copied().fold(0.0, f64::max) + 3.0 * self.pad + 1e-6;
         let b = sb.still;
         let mut hits = 0;
+        // The candidates that pass the still box, gathered without a branch per sample (which
+        // way a sample goes follows no pattern a predictor learns) and tested in their order.
+        let mut candidates = [0u32; CANDIDATES];
+        let mut n = 0;
         for qy in qy0..=qy1 {
             for qx in qx0..=qx1 {
                 let base = (qy as usize * sw + qx as usize) * out.n_per;
@@ -563,16 +570,35 @@ impl MovingMicropolygon<'_> {
                         Some(lens) => lens.offset_range(z0, z1, ts.lens),
                         None => ([0.0; 2], [0.0; 2]),
                     };
-                    if x < b[0] + ex[0] - pad
-                        || x > b[1] + ex[1] + pad
-                        || y < b[2] + ey[0] - pad
-                        || y > b[3] + ey[1] + pad
-                    {
-                        continue;
+                    let outside = (x < b[0] + ex[0] - pad)
+                        | (x > b[1] + ex[1] + pad)
+                        | (y < b[2] + ey[0] - pad)
+                        | (y > b[3] + ey[1] + pad);
+                    candidates[n] = p as u32;
+                    n += usize::from(!outside);
+                    if n == CANDIDATES {
+                        hits += self.sample_candidates(&candidates, &sb, project, out)?;
+                        n = 0;
                     }
-                    hits += self.sample_at(&ts, &sb, project, out)?;
                 }
             }
+        }
+        hits += self.sample_candidates(&candidates[..n], &sb, project, out)?;
+        Some(hits)
+    }
+
+    /// [`Self::sample_at`] for each of the time-ordered samples `candidates`, in order.
+    fn sample_candidates(
+        &self,
+        candidates: &[u32],
+        sb: &StratumBound,
+        project: &impl Fn(DVec3) -> Option<DVec3>,
+        out: &mut SampleBuffer,
+    ) -> Option<u64> {
+        let mut hits = 0;
+        for &p in candidates {
+            let ts = out.timed[p as usize];
+            hits += self.sample_at(&ts, sb, project, out)?;
         }
         Some(hits)
     }

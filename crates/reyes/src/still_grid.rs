@@ -192,65 +192,47 @@ impl SampleBuffer {
         }
         let edges = TriangleEdges::new(t);
         let shade = g.triangle_shade(t.idx, first);
-        // A triangle without reaching edges holds only points inside its vertices' bound, and
-        // its edge tests decide on the exact signs (f32 positions in f64), so a sample beyond
-        // that bound (with a margin far above the tests' rounding) fails them: a few compares
-        // instead of three edge values for most samples of the pixels around a micropolygon.
-        // A reaching edge reaches past the bound (at a sharp corner, past `grow` too): no bound.
-        let tight = if grow == 0.0 {
-            const MARGIN: f64 = 1e-4;
-            let [x0, x1, y0, y1] = t.v.iter().fold(
-                [
-                    f64::INFINITY,
-                    f64::NEG_INFINITY,
-                    f64::INFINITY,
-                    f64::NEG_INFINITY,
-                ],
-                |b, p| [b[0].min(p.x), b[1].max(p.x), b[2].min(p.y), b[3].max(p.y)],
-            );
-            [x0 - MARGIN, x1 + MARGIN, y0 - MARGIN, y1 + MARGIN]
-        } else {
-            [
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-            ]
-        };
         let inv_z = t.v.map(|p| 1.0 / p.z);
         let [near, far] = self.near_far;
         let n_per = self.n_per;
         let mut hits = 0;
         for qy in qy0 as usize..=qy1 as usize {
             let row = qy * sw as usize;
-            for s in (row + qx0 as usize) * n_per..(row + qx1 as usize + 1) * n_per {
-                let (x, y) = (f64::from(self.pos[s].0), f64::from(self.pos[s].1));
-                if x < tight[0] || x > tight[1] || y < tight[2] || y > tight[3] {
-                    continue;
+            let samples = (row + qx0 as usize) * n_per..(row + qx1 as usize + 1) * n_per;
+            // The samples covered, found without branches a run of 64 at a time (see
+            // [`TriangleEdges::inside`]), then visited one set bit at a time.
+            for start in samples.clone().step_by(64) {
+                let run = start..samples.end.min(start + 64);
+                let mut covered = 0u64;
+                for (k, &(x, y)) in self.pos[run].iter().enumerate() {
+                    covered |= u64::from(edges.inside(f64::from(x), f64::from(y))) << k;
                 }
-                let Some(w) = edges.covers(x, y) else {
-                    continue;
-                };
-                // Depth is linear in screen space for ortho, its reciprocal for perspective.
-                let z = if self.perspective {
-                    (1.0 / (w[0] * inv_z[0] + w[1] * inv_z[1] + w[2] * inv_z[2])) as f32
-                } else {
-                    (w[0] * t.v[0].z + w[1] * t.v[1].z + w[2] * t.v[2].z) as f32
-                };
-                if z < near || z > far || z >= self.opaque_z[s] {
-                    continue;
+                while covered != 0 {
+                    let s = start + covered.trailing_zeros() as usize;
+                    covered &= covered - 1;
+                    let (x, y) = (f64::from(self.pos[s].0), f64::from(self.pos[s].1));
+                    let w = edges.weights(x, y);
+                    // Depth is linear in screen space for ortho, its reciprocal for perspective.
+                    let z = if self.perspective {
+                        (1.0 / (w[0] * inv_z[0] + w[1] * inv_z[1] + w[2] * inv_z[2])) as f32
+                    } else {
+                        (w[0] * t.v[0].z + w[1] * t.v[1].z + w[2] * t.v[2].z) as f32
+                    };
+                    if z < near || z > far || z >= self.opaque_z[s] {
+                        continue;
+                    }
+                    hits += 1;
+                    let (idx, ccw) = (t.idx, t.ccw);
+                    let hit = Hit {
+                        idx,
+                        w,
+                        first,
+                        z,
+                        order,
+                        ccw,
+                    };
+                    self.deposit(g, s, hit, &shade);
                 }
-                hits += 1;
-                let (idx, ccw) = (t.idx, t.ccw);
-                let hit = Hit {
-                    idx,
-                    w,
-                    first,
-                    z,
-                    order,
-                    ccw,
-                };
-                self.deposit(g, s, hit, &shade);
             }
         }
         hits
