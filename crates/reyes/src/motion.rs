@@ -627,6 +627,9 @@ impl MovingMicropolygon<'_> {
         let path = union_path(bounds);
         let (k0, k1) = (lens.factor(z0), lens.factor(z1));
         let mut hits = 0;
+        // Candidates (sample, stratum) gathered without a branch, as in `sample_stratum`.
+        let mut candidates = [(0u32, 0u32); CANDIDATES];
+        let mut m = 0;
         for j in 0..n {
             let o = lens.offset_box(z0, z1, lens.stratum_bound(j));
             let bx = [
@@ -642,8 +645,10 @@ impl MovingMicropolygon<'_> {
                 for qx in qx0..=qx1 {
                     let base = (qy as usize * sw + qx as usize) * n;
                     let f = out.timed[base + j].by_lens as usize;
-                    let ts = out.timed[base + f.min(n - 1)];
-                    let sb = &bounds[(f * strata / n).min(strata - 1)];
+                    let p = base + f.min(n - 1);
+                    let ts = out.timed[p];
+                    let k = (f * strata / n).min(strata - 1);
+                    let sb = &bounds[k];
                     let b = sb.still;
                     let dt = f64::from(ts.t) - sb.t0;
                     let x = f64::from(ts.x) - sb.v[0] * dt;
@@ -651,16 +656,36 @@ impl MovingMicropolygon<'_> {
                     // `Lens::offset_range` with the depth range's factors computed once.
                     let ((ax, ay), (cx, cy)) =
                         (lens.offset_by(k0, ts.lens), lens.offset_by(k1, ts.lens));
-                    if x < b[0] + ax.min(cx) - pad
-                        || x > b[1] + ax.max(cx) + pad
-                        || y < b[2] + ay.min(cy) - pad
-                        || y > b[3] + ay.max(cy) + pad
-                    {
-                        continue;
+                    let outside = (x < b[0] + ax.min(cx) - pad)
+                        | (x > b[1] + ax.max(cx) + pad)
+                        | (y < b[2] + ay.min(cy) - pad)
+                        | (y > b[3] + ay.max(cy) + pad);
+                    candidates[m] = (p as u32, k as u32);
+                    m += usize::from(!outside);
+                    if m == CANDIDATES {
+                        hits += self.sample_cell_candidates(&candidates, bounds, project, out)?;
+                        m = 0;
                     }
-                    hits += self.sample_at(&ts, sb, project, out)?;
                 }
             }
+        }
+        hits += self.sample_cell_candidates(&candidates[..m], bounds, project, out)?;
+        Some(hits)
+    }
+
+    /// [`Self::sample_at`] for each of the time-ordered samples `candidates` with the index of
+    /// its time stratum's bound, in order.
+    fn sample_cell_candidates(
+        &self,
+        candidates: &[(u32, u32)],
+        bounds: &[StratumBound],
+        project: &impl Fn(DVec3) -> Option<DVec3>,
+        out: &mut SampleBuffer,
+    ) -> Option<u64> {
+        let mut hits = 0;
+        for &(p, k) in candidates {
+            let ts = out.timed[p as usize];
+            hits += self.sample_at(&ts, &bounds[k as usize], project, out)?;
         }
         Some(hits)
     }
