@@ -21,7 +21,10 @@ use crate::dice::ShadedGrid;
 use crate::int_floor::floor_f64_to_i32;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
-use crate::stratum_bound::{cut_corners, strata_paths, stratum_bound, StratumBound, StratumPath};
+use crate::stratum_bound::{
+    cut_corners, moves_rigidly, strata_paths, stratum_bound, StratumBound, StratumPath,
+    RIGID_SWEEP_PER_STRATUM,
+};
 use crate::time_strata::{stratum_count, stratum_cuts, stratum_samples, time_slack};
 use glam::{DVec3, Vec3};
 use illume_ri::motion::segment;
@@ -198,7 +201,7 @@ pub(crate) fn sample_moving_grid(
     };
     let setup = m
         .setup
-        .get_or_init(|| grid_setup(g, m, &project, persp, out));
+        .get_or_init(|| grid_setup(g, m, &project, persp, lens.is_some(), out));
     let mut hits = 0;
     let mut bounds = Vec::new();
     for j in 0..g.nv - 1 {
@@ -232,6 +235,7 @@ fn grid_setup(
     m: &GridMotion,
     project: &impl Fn(DVec3) -> Option<DVec3>,
     persp: bool,
+    lens: bool,
     out: &SampleBuffer,
 ) -> GridSetup {
     let mut setup = GridSetup {
@@ -247,7 +251,7 @@ fn grid_setup(
                 m,
                 [i, j],
                 project,
-                persp,
+                [persp, lens],
                 out,
                 &mut setup.cuts,
                 &mut paths,
@@ -273,7 +277,7 @@ fn micropolygon_setup(
     m: &GridMotion,
     [i, j]: [usize; 2],
     project: &impl Fn(DVec3) -> Option<DVec3>,
-    persp: bool,
+    [persp, lens]: [bool; 2],
     out: &SampleBuffer,
     cuts: &mut Vec<Vec<f64>>,
     paths: &mut Vec<StratumPath>,
@@ -298,7 +302,10 @@ fn micropolygon_setup(
     let n = out.n_per;
     let shutter = out.shutter.map(f64::from);
     let mut strata = if m.keys.len() > 1 && shutter[1] > shutter[0] {
-        stratum_count(sweep(m, &quad, key_box, project), n)
+        // Not through a lens: there longer strata cost more (measured on `rib/motion.rib`).
+        let rigid = !lens && moves_rigidly(m, &quad, shutter, project, persp);
+        let per = if rigid { RIGID_SWEEP_PER_STRATUM } else { 1.0 };
+        stratum_count(sweep(m, &quad, key_box, project) / per, n)
     } else {
         1
     };
