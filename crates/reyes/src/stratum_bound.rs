@@ -203,9 +203,10 @@ pub(crate) fn stratum_bound(
 pub(crate) const RIGID_SWEEP_PER_STRATUM: f64 = 8.0;
 
 /// Whether micropolygon `quad` moves over the shutter `[open, close]` as one piece in raster
-/// space (a camera move or a translation): no key inside the shutter, and moved back by its
-/// mean velocity its box over the shutter is at most a pixel wider and taller than its own
-/// box at `open`. `false` when a corner does not project.
+/// space (a camera move or a translation, or anything else that stays inside its own box once
+/// moved back, such as shrinking): no key inside the shutter, and moved back by its mean
+/// velocity its box over the shutter is at most a pixel wider and taller than its own box at
+/// `open`. `false` when a corner does not project.
 pub(crate) fn moves_rigidly(
     m: &GridMotion,
     quad: &[usize; 4],
@@ -235,4 +236,54 @@ pub(crate) fn moves_rigidly(
     b.chord.is_some()
         && s[1] - s[0] <= own[1] - own[0] + 1.0
         && s[3] - s[2] <= own[3] - own[2] + 1.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// A unit square (vertices 0..4, counter-clockwise) at depth 5 whose second key is the first
+    /// mapped by `f`; orthographic raster = camera x, y.
+    fn moved(f: impl Fn(Vec3) -> Vec3, times: Vec<f64>) -> GridMotion {
+        let square: Vec<Vec3> = [(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)]
+            .iter()
+            .map(|&(x, y)| Vec3::new(x, y, 5.0))
+            .collect();
+        let mut keys = vec![square.clone()];
+        for _ in 1..times.len() {
+            keys.push(square.iter().map(|&p| f(p)).collect());
+        }
+        GridMotion::new(times, keys)
+    }
+
+    #[test]
+    fn a_translation_moves_rigidly_and_a_rotation_or_an_inner_key_does_not() {
+        let project = |p: DVec3| Some(p);
+        let quad = [0, 1, 2, 3];
+        let shutter = [0.0, 1.0];
+        let slide = moved(|p| p + Vec3::new(40.0, 3.0, 0.0), vec![0.0, 1.0]);
+        assert!(moves_rigidly(&slide, &quad, shutter, &project, false));
+        // An eighth of a turn about the square's centre: moved back by the mean velocity
+        // (zero) its corners' chords reach 0.83 beyond its box on each side. (A quarter turn
+        // would not: each corner's chord runs along a side.)
+        let h = std::f32::consts::FRAC_1_SQRT_2;
+        let turn = moved(
+            |p| {
+                let (x, y) = (p.x - 2.0, p.y - 2.0);
+                Vec3::new(2.0 + h * (x - y), 2.0 + h * (x + y), p.z)
+            },
+            vec![0.0, 1.0],
+        );
+        assert!(!moves_rigidly(&turn, &quad, shutter, &project, false));
+        // The same slide through a third key at mid-shutter.
+        let keyed = moved(|p| p + Vec3::new(40.0, 3.0, 0.0), vec![0.0, 0.5, 1.0]);
+        assert!(!moves_rigidly(&keyed, &quad, shutter, &project, false));
+        // Growing to twice its size, it sweeps past its own box once moved back; shrinking,
+        // it stays inside it, which is what counts (longer strata cost no more candidates).
+        let grow = moved(|p| p * Vec3::new(2.0, 2.0, 1.0), vec![0.0, 1.0]);
+        assert!(!moves_rigidly(&grow, &quad, shutter, &project, false));
+        let shrink = moved(|p| p * Vec3::new(0.5, 0.5, 1.0), vec![0.0, 1.0]);
+        assert!(moves_rigidly(&shrink, &quad, shutter, &project, false));
+    }
 }
