@@ -327,6 +327,13 @@ pub(crate) fn render_bucket(
 /// Work done while a band renders that is not one of its buckets (see [`BandRenderer::render`]).
 pub(crate) type SideTask<'t> = Box<dyn FnOnce() + Send + 't>;
 
+/// One item of a band's parallel loop ([`BandRenderer::render`]).
+enum BandWork<'t> {
+    Side(SideTask<'t>),
+    /// A bucket's index in the layout.
+    Bucket(usize),
+}
+
 /// Everything a bucket needs besides its pieces: renders one band of buckets at a time (the
 /// buckets of a band in parallel) into whole pixel rows.
 pub(crate) struct BandRenderer<'a> {
@@ -372,18 +379,14 @@ impl BandRenderer<'_> {
         // the rows do not depend on the order buckets finish in.
         let out = Mutex::new(blank_rows([cx0, cx1], rows, stride));
         let next_top = (by + 1 < self.layout.band_count()).then(|| self.layout.samples_top(by + 1));
-        let side: Vec<Mutex<Option<SideTask>>> =
-            side.into_iter().map(|t| Mutex::new(Some(t))).collect();
-        let (tasks, count) = (side.len(), buckets.len());
-        (0..tasks + count).into_par_iter().for_each(|k| {
-            if let Some(task) = side.get(k) {
-                let task = task.lock().unwrap_or_else(|e| e.into_inner()).take();
-                if let Some(task) = task {
-                    task();
-                }
-                return;
-            }
-            let b = first + k - tasks;
+        let work: Vec<BandWork> = (side.into_iter().map(BandWork::Side))
+            .chain(buckets.map(BandWork::Bucket))
+            .collect();
+        work.into_par_iter().for_each(|w| {
+            let b = match w {
+                BandWork::Side(task) => return task(),
+                BandWork::Bucket(b) => b,
+            };
             let block = render_bucket(
                 self.frame,
                 self.shader,

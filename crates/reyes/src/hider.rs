@@ -336,16 +336,14 @@ fn render_block(
                 grids: &[GridSlot],
                 by,
                 side: Vec<SideTask<'_>>| {
-        let rows = match written.take() {
-            Some(prev) => {
-                // The band before written while this one renders (a side task of the band).
-                let sink = &mut *sink;
-                let mut side: Vec<SideTask> = side;
-                side.push(Box::new(move || sink.rows(prev)));
-                bands.render(by, pieces, lists, grids, side)
-            }
-            None => bands.render(by, pieces, lists, grids, side),
-        };
+        // Re-bound to a lifetime as short as this call, so it can hold the sink's borrow.
+        let mut side: Vec<SideTask> = side;
+        if let Some(prev) = written.take() {
+            // The band before written while this one renders (a side task of the band).
+            let sink = &mut *sink;
+            side.push(Box::new(move || sink.rows(prev)));
+        }
+        let rows = bands.render(by, pieces, lists, grids, side);
         if rows_bytes(&rows) <= OVERLAP_BYTES {
             written = Some(rows);
         } else {

@@ -584,26 +584,28 @@ impl MovingMicropolygon<'_> {
                     candidates[n] = p as u32;
                     n += usize::from(!outside);
                     if n == CANDIDATES {
-                        hits += self.sample_candidates(&candidates, &sb, project, out)?;
+                        let all = candidates.iter().map(|&p| (p, &sb));
+                        hits += self.sample_candidates(all, project, out)?;
                         n = 0;
                     }
                 }
             }
         }
-        hits += self.sample_candidates(&candidates[..n], &sb, project, out)?;
+        let rest = candidates[..n].iter().map(|&p| (p, &sb));
+        hits += self.sample_candidates(rest, project, out)?;
         Some(hits)
     }
 
-    /// [`Self::sample_at`] for each of the time-ordered samples `candidates`, in order.
-    fn sample_candidates(
+    /// [`Self::sample_at`] for each time-ordered sample `p` of `candidates` with its time
+    /// stratum's bound, in order.
+    fn sample_candidates<'b>(
         &self,
-        candidates: &[u32],
-        sb: &StratumBound,
+        candidates: impl Iterator<Item = (u32, &'b StratumBound)>,
         project: &impl Fn(DVec3) -> Option<DVec3>,
         out: &mut SampleBuffer,
     ) -> Option<u64> {
         let mut hits = 0;
-        for &p in candidates {
+        for (p, sb) in candidates {
             let ts = out.timed[p as usize];
             hits += self.sample_at(&ts, sb, project, out)?;
         }
@@ -670,30 +672,17 @@ impl MovingMicropolygon<'_> {
                     candidates[m] = (p as u32, k as u32);
                     m += usize::from(!outside);
                     if m == CANDIDATES {
-                        hits += self.sample_cell_candidates(&candidates, bounds, project, out)?;
+                        let all = candidates.iter().map(|&(p, k)| (p, &bounds[k as usize]));
+                        hits += self.sample_candidates(all, project, out)?;
                         m = 0;
                     }
                 }
             }
         }
-        hits += self.sample_cell_candidates(&candidates[..m], bounds, project, out)?;
-        Some(hits)
-    }
-
-    /// [`Self::sample_at`] for each of the time-ordered samples `candidates` with the index of
-    /// its time stratum's bound, in order.
-    fn sample_cell_candidates(
-        &self,
-        candidates: &[(u32, u32)],
-        bounds: &[StratumBound],
-        project: &impl Fn(DVec3) -> Option<DVec3>,
-        out: &mut SampleBuffer,
-    ) -> Option<u64> {
-        let mut hits = 0;
-        for &(p, k) in candidates {
-            let ts = out.timed[p as usize];
-            hits += self.sample_at(&ts, &bounds[k as usize], project, out)?;
-        }
+        let rest = candidates[..m]
+            .iter()
+            .map(|&(p, k)| (p, &bounds[k as usize]));
+        hits += self.sample_candidates(rest, project, out)?;
         Some(hits)
     }
 
