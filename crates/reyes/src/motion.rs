@@ -22,7 +22,7 @@ use crate::int_floor::floor_f64_to_i32;
 use crate::lens::Lens;
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
 use crate::stratum_bound::{
-    cut_corners, moves_rigidly, strata_paths, stratum_bound, StratumBound, StratumPath,
+    cut_corners, moves_rigidly, strata_paths, stratum_bound, StillHull, StratumBound, StratumPath,
     RIGID_SWEEP_PER_STRATUM,
 };
 use crate::time_strata::{stratum_count, stratum_cuts, stratum_samples, time_slack};
@@ -558,6 +558,14 @@ impl MovingMicropolygon<'_> {
         // along `v` over that extra time at most doubles it.
         let pad = self.reach.iter().copied().fold(0.0, f64::max) + 3.0 * self.pad + 1e-6;
         let b = sb.still;
+        // Without a lens, the candidates in the still box's corners are dropped before the
+        // full test (a lens offset would shift each sample by its own amount). Not for a
+        // grid border micropolygon: an edge that reaches out widens its triangle's wedge at an
+        // acute corner by more than the reach (`Chord::still_hull`).
+        let hull = match (self.lens, &sb.chord) {
+            (None, Some(c)) if self.reach == [0.0; 4] => c.still_hull(pad),
+            _ => None,
+        };
         let mut hits = 0;
         // The candidates that pass the still box, gathered without a branch per sample (which
         // way a sample goes follows no pattern a predictor learns) and tested in their order.
@@ -584,16 +592,42 @@ impl MovingMicropolygon<'_> {
                     candidates[n] = p as u32;
                     n += usize::from(!outside);
                     if n == CANDIDATES {
-                        let all = candidates.iter().map(|&p| (p, &sb));
-                        hits += self.sample_candidates(all, project, out)?;
+                        hits += self.sample_in_hull(&candidates, &sb, hull, project, out)?;
                         n = 0;
                     }
                 }
             }
         }
-        let rest = candidates[..n].iter().map(|&p| (p, &sb));
-        hits += self.sample_candidates(rest, project, out)?;
+        hits += self.sample_in_hull(&candidates[..n], &sb, hull, project, out)?;
         Some(hits)
+    }
+
+    /// [`Self::sample_candidates`] for the samples `candidates` of stratum `sb` that `hull`
+    /// holds once moved back (all of them without one), picked without a branch.
+    fn sample_in_hull(
+        &self,
+        candidates: &[u32],
+        sb: &StratumBound,
+        hull: Option<StillHull>,
+        project: &impl Fn(DVec3) -> Option<DVec3>,
+        out: &mut SampleBuffer,
+    ) -> Option<u64> {
+        let Some(hull) = hull else {
+            let all = candidates.iter().map(|&p| (p, sb));
+            return self.sample_candidates(all, project, out);
+        };
+        let mut kept = [0u32; CANDIDATES];
+        let mut n = 0;
+        for &p in candidates {
+            let ts = out.timed[p as usize];
+            let dt = f64::from(ts.t) - sb.t0;
+            let x = f64::from(ts.x) - sb.v[0] * dt;
+            let y = f64::from(ts.y) - sb.v[1] * dt;
+            kept[n] = p;
+            n += usize::from(hull.holds(x, y));
+        }
+        let kept = kept[..n].iter().map(|&p| (p, sb));
+        self.sample_candidates(kept, project, out)
     }
 
     /// [`Self::sample_at`] for each time-ordered sample `p` of `candidates` with its time
