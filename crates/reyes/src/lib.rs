@@ -22,6 +22,7 @@ mod int_floor;
 mod lazy_bands;
 mod lens;
 mod motion;
+mod motion_setup;
 mod raster_triangle;
 mod refine;
 mod row_sink;

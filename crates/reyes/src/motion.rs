@@ -20,12 +20,10 @@
 use crate::dice::ShadedGrid;
 use crate::int_floor::floor_f64_to_i32;
 use crate::lens::Lens;
+use crate::motion_setup::{grid_setup, GridSetup, MicropolygonSetup};
 use crate::sample_buffer::{split_quad, Hit, RasterTriangle, SampleBuffer};
-use crate::stratum_bound::{
-    cut_corners, moves_rigidly, strata_paths, stratum_bound, StillHull, StratumBound, StratumPath,
-    RIGID_SWEEP_PER_STRATUM,
-};
-use crate::time_strata::{stratum_count, stratum_cuts, stratum_samples, time_slack};
+use crate::stratum_bound::{LazyHull, StratumBound};
+use crate::time_strata::stratum_samples;
 use glam::{DVec3, Vec3};
 use illume_ri::motion::segment;
 use illume_ri::Camera;
@@ -38,80 +36,6 @@ pub(crate) struct GridMotion {
     /// Its micropolygons' bucket-independent bounds, set up by the first bucket that samples
     /// it and shared by the others (a blurred grid spans many buckets).
     setup: OnceLock<GridSetup>,
-}
-
-/// What sampling a moving micropolygon needs that no bucket changes: its raster box and
-/// depth range over every key, its time strata and their padding, and where its strata's
-/// paths are in [`GridSetup`] (none for one stratum).
-struct MicropolygonSetup {
-    key_box: [f64; 4],
-    z: [f64; 2],
-    strata: usize,
-    /// `MovingMicropolygon::pad`.
-    pad: f64,
-    paths: u32,
-}
-
-/// [`MicropolygonSetup`] per micropolygon (`None`: back-facing, or a position that does not
-/// project, so it is never sampled); every micropolygon's strata's paths ([`strata_paths`])
-/// in one vector; the cuts per stratum count. The corners at the cuts are projected again
-/// by each bucket, for only the strata it reaches: keeping them would triple the memory.
-struct GridSetup {
-    mps: Vec<Option<MicropolygonSetup>>,
-    paths: Vec<StratumPath>,
-    cuts: Vec<Vec<f64>>,
-}
-
-impl GridSetup {
-    /// Stratum `k`'s bound of micropolygon `s` (of vertices `quad`); `ends` holds its corners
-    /// at the stratum's cuts when a previous stratum computed them. `None` when a corner does
-    /// not project (never, once `strata_paths` projected them).
-    #[allow(clippy::too_many_arguments)]
-    fn bound(
-        &self,
-        m: &GridMotion,
-        quad: &[usize; 4],
-        s: &MicropolygonSetup,
-        k: usize,
-        shutter: [f64; 2],
-        persp: bool,
-        project: &impl Fn(DVec3) -> Option<DVec3>,
-        ends: &mut Option<(usize, [DVec3; 4])>,
-    ) -> Option<StratumBound> {
-        if s.strata == 1 {
-            return Some(StratumBound {
-                path: s.key_box,
-                t0: shutter[0],
-                v: [0.0; 2],
-                still: s.key_box,
-                chord: None,
-            });
-        }
-        let cuts = &self.cuts[s.strata];
-        let start = match *ends {
-            Some((c, v)) if c == k => v,
-            _ => cut_corners(m, quad, cuts[k], project)?,
-        };
-        let end = cut_corners(m, quad, cuts[k + 1], project)?;
-        *ends = Some((k + 1, end));
-        let p = self.paths[s.paths as usize + k];
-        Some(stratum_bound(
-            p,
-            &start,
-            &end,
-            [cuts[k], cuts[k + 1]],
-            persp,
-        ))
-    }
-
-    /// Stratum `k`'s path box of micropolygon `s`.
-    fn path(&self, s: &MicropolygonSetup, k: usize) -> [f64; 4] {
-        if s.strata == 1 {
-            s.key_box
-        } else {
-            self.paths[s.paths as usize + k].path
-        }
-    }
 }
 
 impl GridMotion {
@@ -131,56 +55,6 @@ impl GridMotion {
         let b = self.keys[k + 1][v].as_dvec3();
         a + (b - a) * w
     }
-}
-
-/// A bound on how far (raster pixels, either axis) a vertex of a micropolygon with raster box
-/// `[x0, x1, y0, y1]` and depths `[z0, z1]` over every key moves in `dt` of time. Between keys
-/// a raster coordinate `α·X/Z + β` of a point moving linearly in camera space has the
-/// derivative `(x₁ − x₀)·Z₀Z₁/Z(t)²` per unit of the key span, at most the key box's extent
-/// times `z1/z0` (perspective) over the shortest key span. Infinite when keys share a time.
-fn drift(
-    m: &GridMotion,
-    [x0, x1, y0, y1]: [f64; 4],
-    [z0, z1]: [f64; 2],
-    persp: bool,
-    dt: f64,
-) -> f64 {
-    let span = m
-        .times
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .fold(f64::MAX, f64::min);
-    if span <= 0.0 {
-        return f64::INFINITY;
-    }
-    let depth = if persp { z1 / z0 } else { 1.0 };
-    (x1 - x0).max(y1 - y0) * depth / span * dt
-}
-
-/// How far (raster pixels) micropolygon `quad` moves over the keys beyond its own size at the
-/// first key, given its raster box `[x0, x1, y0, y1]` over every key.
-fn sweep(
-    m: &GridMotion,
-    quad: &[usize; 4],
-    [x0, x1, y0, y1]: [f64; 4],
-    project: &impl Fn(DVec3) -> Option<DVec3>,
-) -> f64 {
-    let mut v = [DVec3::ZERO; 4];
-    let mut len = 0;
-    for &k in quad {
-        if let Some(q) = project(m.keys[0][k].as_dvec3()) {
-            v[len] = q;
-            len += 1;
-        }
-    }
-    let v = &v[..len];
-    let extent = |g: fn(&DVec3) -> f64| {
-        let xs = v.iter().map(g);
-        xs.clone().fold(f64::MIN, f64::max) - xs.fold(f64::MAX, f64::min)
-    };
-    ((x1 - x0) - extent(|q| q.x))
-        .max((y1 - y0) - extent(|q| q.y))
-        .max(0.0)
 }
 
 /// Samples every micropolygon of a moving or lens-blurred grid; returns the samples hit.
@@ -225,114 +99,6 @@ pub(crate) fn sample_moving_grid(
         }
     }
     hits
-}
-
-/// Every micropolygon's [`MicropolygonSetup`]: its raster box and depths over every key, its
-/// time strata (`time_strata.rs`), its corners at their cuts and their paths, as no bucket
-/// changes them.
-fn grid_setup(
-    g: &ShadedGrid,
-    m: &GridMotion,
-    project: &impl Fn(DVec3) -> Option<DVec3>,
-    persp: bool,
-    lens: bool,
-    out: &SampleBuffer,
-) -> GridSetup {
-    let mut setup = GridSetup {
-        mps: Vec::with_capacity((g.nu - 1) * (g.nv - 1)),
-        paths: Vec::new(),
-        cuts: Vec::new(),
-    };
-    let mut paths = Vec::new();
-    for j in 0..g.nv - 1 {
-        for i in 0..g.nu - 1 {
-            let s = micropolygon_setup(
-                g,
-                m,
-                [i, j],
-                project,
-                [persp, lens],
-                out,
-                &mut setup.cuts,
-                &mut paths,
-            );
-            setup.mps.push(s.map(|mut s| {
-                s.paths = setup.paths.len() as u32;
-                if s.strata > 1 {
-                    setup.paths.extend_from_slice(&paths);
-                }
-                s
-            }));
-        }
-    }
-    setup.paths.shrink_to_fit();
-    setup
-}
-
-/// Micropolygon `(i, j)`'s [`MicropolygonSetup`], its strata's paths left in `paths` when it
-/// has more than one stratum; `None` when it is never sampled.
-#[allow(clippy::too_many_arguments)]
-fn micropolygon_setup(
-    g: &ShadedGrid,
-    m: &GridMotion,
-    [i, j]: [usize; 2],
-    project: &impl Fn(DVec3) -> Option<DVec3>,
-    [persp, lens]: [bool; 2],
-    out: &SampleBuffer,
-    cuts: &mut Vec<Vec<f64>>,
-    paths: &mut Vec<StratumPath>,
-) -> Option<MicropolygonSetup> {
-    let nu = g.nu;
-    if g.backface(j * (nu - 1) + i) {
-        return None;
-    }
-    let a = j * nu + i;
-    let quad = [a, a + 1, a + nu + 1, a + nu];
-    // Raster box over every key, depth range for the circle of confusion.
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    let (mut z0, mut z1) = (f64::MAX, f64::MIN);
-    for key in &m.keys {
-        for &v in &quad {
-            let q = project(key[v].as_dvec3()).filter(|q| q.is_finite())?;
-            (x0, x1, y0, y1) = (x0.min(q.x), x1.max(q.x), y0.min(q.y), y1.max(q.y));
-            (z0, z1) = (z0.min(q.z), z1.max(q.z));
-        }
-    }
-    let key_box = [x0, x1, y0, y1];
-    let n = out.n_per;
-    let shutter = out.shutter.map(f64::from);
-    let mut strata = if m.keys.len() > 1 && shutter[1] > shutter[0] {
-        // Not through a lens: there longer strata cost more (measured on `rib/motion.rib`).
-        let rigid = !lens && moves_rigidly(m, &quad, shutter, project, persp);
-        let per = if rigid { RIGID_SWEEP_PER_STRATUM } else { 1.0 };
-        stratum_count(sweep(m, &quad, key_box, project) / per, n)
-    } else {
-        1
-    };
-    // A sample time may round past its stratum's cuts by `time_slack`: the boxes grow by the
-    // motion over that time (a tiny fraction of a pixel), or are not cut when it is unbounded.
-    let drift = drift(m, key_box, [z0, z1], persp, time_slack(shutter));
-    if drift.is_nan() || drift >= 0.25 {
-        strata = 1;
-    }
-    let mut pad = 0.0;
-    if strata > 1 {
-        pad = drift;
-        if cuts.len() <= strata {
-            cuts.resize(strata + 1, Vec::new());
-        }
-        if cuts[strata].is_empty() {
-            cuts[strata] = stratum_cuts(strata, n, shutter);
-        }
-        strata_paths(m, &quad, &cuts[strata], project, paths)?;
-    }
-    Some(MicropolygonSetup {
-        key_box,
-        z: [z0, z1],
-        strata,
-        pad,
-        paths: 0,
-    })
 }
 
 /// Samples micropolygon `(i, j)` of a moving grid, set up as `s`: over each time stratum of
@@ -562,10 +328,13 @@ impl MovingMicropolygon<'_> {
         // full test (a lens offset would shift each sample by its own amount). Not for a
         // grid border micropolygon: an edge that reaches out widens its triangle's wedge at an
         // acute corner by more than the reach (`Chord::still_hull`).
-        let hull = match (self.lens, &sb.chord) {
-            (None, Some(c)) if self.reach == [0.0; 4] => c.still_hull(pad),
-            _ => None,
-        };
+        let mut hull = LazyHull::new(
+            match (self.lens, &sb.chord) {
+                (None, Some(c)) if self.reach == [0.0; 4] => Some(c),
+                _ => None,
+            },
+            pad,
+        );
         let mut hits = 0;
         // The candidates that pass the still box, gathered without a branch per sample (which
         // way a sample goes follows no pattern a predictor learns) and tested in their order.
@@ -592,27 +361,27 @@ impl MovingMicropolygon<'_> {
                     candidates[n] = p as u32;
                     n += usize::from(!outside);
                     if n == CANDIDATES {
-                        hits += self.sample_in_hull(&candidates, &sb, hull, project, out)?;
+                        hits += self.sample_in_hull(&candidates, &sb, &mut hull, project, out)?;
                         n = 0;
                     }
                 }
             }
         }
-        hits += self.sample_in_hull(&candidates[..n], &sb, hull, project, out)?;
+        hits += self.sample_in_hull(&candidates[..n], &sb, &mut hull, project, out)?;
         Some(hits)
     }
 
-    /// [`Self::sample_candidates`] for the samples `candidates` of stratum `sb` that `hull`
-    /// holds once moved back (all of them without one), picked without a branch.
+    /// [`Self::sample_candidates`] for the samples `candidates` of stratum `sb` that its
+    /// `hull` holds once moved back (all of them without one), picked without a branch.
     fn sample_in_hull(
         &self,
         candidates: &[u32],
         sb: &StratumBound,
-        hull: Option<StillHull>,
+        hull: &mut LazyHull,
         project: &impl Fn(DVec3) -> Option<DVec3>,
         out: &mut SampleBuffer,
     ) -> Option<u64> {
-        let Some(hull) = hull else {
+        let Some(hull) = hull.for_candidates(candidates.len()) else {
             let all = candidates.iter().map(|&p| (p, sb));
             return self.sample_candidates(all, project, out);
         };

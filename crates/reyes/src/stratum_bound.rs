@@ -132,6 +132,41 @@ impl StillHull {
     }
 }
 
+/// A stratum's [`StillHull`], set up when a batch of candidates is first checked against it
+/// and only for a batch of [`HULL_MIN`] or more: its eight square roots and divisions cost
+/// about what testing a few candidates does (`rib/bench/transform_blur.rib` has one sample
+/// per pixel in each of its 16 strata; set up for every stratum, the hull took 4% of its time).
+pub(crate) struct LazyHull<'a> {
+    chord: Option<&'a Chord>,
+    margin: f64,
+    hull: Option<Option<StillHull>>,
+}
+
+/// See [`LazyHull`].
+const HULL_MIN: usize = 8;
+
+impl<'a> LazyHull<'a> {
+    /// The hull of `chord` (none without one) grown by `margin`.
+    pub(crate) fn new(chord: Option<&'a Chord>, margin: f64) -> LazyHull<'a> {
+        LazyHull {
+            chord,
+            margin,
+            hull: None,
+        }
+    }
+
+    /// The hull to check a batch of `n` candidates against, if any.
+    pub(crate) fn for_candidates(&mut self, n: usize) -> Option<StillHull> {
+        if n < HULL_MIN {
+            return None;
+        }
+        let (chord, margin) = (self.chord, self.margin);
+        *self
+            .hull
+            .get_or_insert_with(|| chord.and_then(|c| c.still_hull(margin)))
+    }
+}
+
 /// The per-stratum bounds of micropolygon `quad` between consecutive `cuts` (times), in two
 /// steps: [`strata_paths`] (each cut's corners and each stratum's `path`, set up once per
 /// grid) and [`stratum_bound`] (the rest, only for the strata a bucket reaches).
