@@ -29,6 +29,7 @@ mod row_sink;
 mod sample_buffer;
 pub mod sampling;
 mod shader;
+mod slice_window;
 mod still_grid;
 mod stratum_bound;
 mod time_strata;

@@ -301,16 +301,6 @@ pub(crate) fn stratum_bound(
     bound
 }
 
-/// Pixels of sweep per time stratum for a micropolygon that [`moves_rigidly`] (one per pixel
-/// otherwise, `time_strata::stratum_count`). Moved back by its mean velocity, such a
-/// micropolygon stays within its own size over a stratum of any length, so longer strata
-/// cost no more candidate samples, only fewer set-ups (each stratum's corners and bound).
-/// Measured with callgrind on `rib/bench/camera_blur.rib` (camera motion, 1 thread): at 320×240
-/// 5.46 G → 4.41 G instructions (the still frame takes 2.39 G), 2× −5%. A micropolygon that
-/// rotates or deforms keeps one stratum per pixel: its still box grows with the stratum
-/// (`transform_blur.rib` took 53% more instructions with longer strata).
-pub(crate) const RIGID_SWEEP_PER_STRATUM: f64 = 8.0;
-
 /// Whether micropolygon `quad` moves over the shutter `[open, close]` as one piece in raster
 /// space (a camera move or a translation, or anything else that stays inside its own box once
 /// moved back, such as shrinking): no key inside the shutter, and moved back by its mean
