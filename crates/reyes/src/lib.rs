@@ -32,6 +32,8 @@ mod shader;
 mod slice_window;
 mod still_grid;
 mod stratum_bound;
+#[cfg(test)]
+mod test_rng;
 mod time_strata;
 mod visible;
 mod visible_lists;

@@ -230,13 +230,7 @@ mod tests {
         // Random triangles (both windings, some with reaching edges) on a quarter-pixel
         // lattice, so many samples fall exactly on edges, tested against jittered and lattice
         // samples: TriangleEdges must agree with RasterTriangle::covers bit for bit.
-        let mut h = 0x2545_f491u32;
-        let mut unit = || {
-            h ^= h << 13;
-            h ^= h >> 17;
-            h ^= h << 5;
-            f64::from(h >> 8) / 16_777_216.0
-        };
+        let mut unit = crate::test_rng::unit_stream(0x2545_f491);
         let mut inside = 0;
         for _ in 0..300 {
             let mut p = || {

@@ -74,13 +74,7 @@ mod tests {
         // sample anywhere in its pixel at any time of its slice (its slack included) that
         // lands in the box once moved back must have its slice in the pixel's window, and the
         // windows must skip most slices (else the test would hold for `[a0, b0)` alone).
-        let mut h = 0x6a09_e667u32;
-        let mut unit = || {
-            h ^= h << 13;
-            h ^= h >> 17;
-            h ^= h << 5;
-            f64::from(h >> 8) / 16_777_216.0
-        };
+        let mut unit = crate::test_rng::unit_stream(0x6a09_e667);
         let (mut inside, mut skipped, mut slices) = (0, 0, 0);
         for case in 0..300 {
             let n = [4, 9, 16, 64][case % 4];

@@ -391,13 +391,7 @@ mod tests {
         // sampled at random times near the quad: a sample the exact test (corners at its time,
         // both triangles) covers must lie in the hull once moved back by the mean velocity.
         use crate::raster_triangle::{split_quad, RasterTriangle};
-        let mut h = 0x9e37_79b9u32;
-        let mut unit = || {
-            h ^= h << 13;
-            h ^= h >> 17;
-            h ^= h << 5;
-            f64::from(h >> 8) / 16_777_216.0
-        };
+        let mut unit = crate::test_rng::unit_stream(0x9e37_79b9);
         let (mut covered, mut rejected, mut hulls) = (0, 0, 0);
         for case in 0..400 {
             let persp = case % 2 == 0;
