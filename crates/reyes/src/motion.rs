@@ -358,9 +358,9 @@ impl MovingMicropolygon<'_> {
         slices.clear();
         if narrow {
             let (gx, gy) = self.lens.map_or((0.0, 0.0), |l| l.blur_radius(z0, z1));
-            let (shutter, n) = (out.shutter.map(f64::from), out.n_per);
+            let (shutter, per_pixel) = (out.shutter.map(f64::from), out.n_per);
             let window = |axis: usize, lo: f64, hi: f64| {
-                SliceWindow::new(sb.t0, sb.v[axis], [lo, hi], shutter, n)
+                SliceWindow::new(sb.t0, sb.v[axis], [lo, hi], shutter, per_pixel)
             };
             let wx = window(0, b[0] - gx - pad, b[1] + gx + pad);
             let wy = window(1, b[2] - gy - pad, b[3] + gy + pad);

@@ -13,7 +13,7 @@ use glam::DVec3;
 
 /// What sampling a moving micropolygon needs that no bucket changes: its raster box and
 /// depth range over every key, its time strata and their padding, and where its strata's
-/// paths are in [`GridSetup`] (none for one stratum).
+/// paths are in [`GridSetup`] (none when it is not `chorded`).
 pub(crate) struct MicropolygonSetup {
     pub(crate) key_box: [f64; 4],
     pub(crate) z: [f64; 2],
