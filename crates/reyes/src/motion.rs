@@ -3,7 +3,8 @@
 //!
 //! Shading happened once, at the first key (PRMan's default: shading at shutter open); only
 //! positions move. The shutter is cut into time strata, about one per pixel of a
-//! micropolygon's motion and at most one per pixel sample (`time_strata.rs`); the
+//! micropolygon's motion and at most one per pixel sample (`time_strata.rs`; far fewer for
+//! one that moves rigidly, `motion_setup.rs`); the
 //! micropolygon is bounded over each stratum's times (a vertex moving linearly in camera
 //! space moves along a straight line in raster space, so its positions at the stratum's ends
 //! and at the keys between hold its path) and grown by the circle of confusion over its depth
@@ -310,9 +311,11 @@ impl MovingMicropolygon<'_> {
 
     /// Tests the samples at time-ordered positions `run` of every pixel the stratum's path
     /// box (the pinhole path over those samples' times) reaches, grown by the edge reach and
-    /// the circle of confusion; a sample is first moved back along the stratum's mean
-    /// velocity and compared with its `still` box. `None` when a position fails to project
-    /// (the micropolygon is dropped, as when a key does not project).
+    /// the circle of confusion, of only the time slices that can reach the micropolygon there
+    /// (`SliceWindow`, for a run of `SLICE_WINDOW_MIN` or more); a sample is first moved back
+    /// along the stratum's mean velocity and compared with its `still` box, then with its
+    /// still hull (`LazyHull`). `None` when a position fails to project (the micropolygon is
+    /// dropped, as when a key does not project).
     fn sample_stratum(
         &self,
         sb: StratumBound,
@@ -381,9 +384,7 @@ impl MovingMicropolygon<'_> {
                 let base = (qy as usize * sw + qx as usize) * out.n_per;
                 for p in base + fa..base + fb {
                     let ts = out.timed[p];
-                    let dt = f64::from(ts.t) - sb.t0;
-                    let x = f64::from(ts.x) - sb.v[0] * dt;
-                    let y = f64::from(ts.y) - sb.v[1] * dt;
+                    let (x, y) = sb.moved_back(ts.x, ts.y, ts.t);
                     // The still box shifted by this sample's lens offset over the
                     // micropolygon's depth range: most candidates end here.
                     let (ex, ey) = match self.lens {
@@ -425,9 +426,7 @@ impl MovingMicropolygon<'_> {
         let mut n = 0;
         for &p in candidates {
             let ts = out.timed[p as usize];
-            let dt = f64::from(ts.t) - sb.t0;
-            let x = f64::from(ts.x) - sb.v[0] * dt;
-            let y = f64::from(ts.y) - sb.v[1] * dt;
+            let (x, y) = sb.moved_back(ts.x, ts.y, ts.t);
             kept[n] = p;
             n += usize::from(hull.holds(x, y));
         }
@@ -498,9 +497,7 @@ impl MovingMicropolygon<'_> {
                     let k = (f * strata / n).min(strata - 1);
                     let sb = &bounds[k];
                     let b = sb.still;
-                    let dt = f64::from(ts.t) - sb.t0;
-                    let x = f64::from(ts.x) - sb.v[0] * dt;
-                    let y = f64::from(ts.y) - sb.v[1] * dt;
+                    let (x, y) = sb.moved_back(ts.x, ts.y, ts.t);
                     // `Lens::offset_range` with the depth range's factors computed once.
                     let ((ax, ay), (cx, cy)) =
                         (lens.offset_by(k0, ts.lens), lens.offset_by(k1, ts.lens));

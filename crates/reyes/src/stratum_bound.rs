@@ -22,6 +22,16 @@ pub(crate) struct StratumBound {
     pub(crate) chord: Option<Chord>,
 }
 
+impl StratumBound {
+    /// Raster position `(x, y)` of a sample at time `t`, moved back by the mean velocity to
+    /// the stratum start: what the `still` box and the still hull are compared with.
+    #[inline(always)]
+    pub(crate) fn moved_back(&self, x: f32, y: f32, t: f32) -> (f64, f64) {
+        let dt = f64::from(t) - self.t0;
+        (f64::from(x) - self.v[0] * dt, f64::from(y) - self.v[1] * dt)
+    }
+}
+
 /// The straight raster paths of a micropolygon's corners over one stratum `[t0, t0 + Δt]`
 /// without a key inside: corner `k` runs from `a[k]` by `d[k]` (raster x, y and camera z).
 #[derive(Clone, Copy, Debug)]
